@@ -1,0 +1,686 @@
+#!/usr/bin/env python3
+"""Generate the parametric rbla sample models (schema/model.schema.json, version 1.0.0).
+
+Standard library only; Python 3.9 or newer.
+
+Every scene is a subcommand with its sizes as options; the model JSON goes to stdout or to
+``--output FILE``. ``all --dir samples/`` regenerates every bundled sample with its defaults.
+
+Conventions of the written models (see schema/model.schema.json):
+  * units: metres, kilonewtons, kN/m3; gravity along -z;
+  * every block has ``id``, ``role``, ``vertices``, ``faces`` (counter-clockwise seen from
+    outside, i.e. outward normal by the right-hand rule), and ``centroid`` and ``volume``
+    computed here from the faces by the divergence theorem, as a CAD would report them;
+  * no ``interfaces``: the solver detects them from the geometry.
+
+``--self-check`` verifies every block before writing: the faces close the polyhedron (each
+directed edge appears once and its reverse once), every face is planar, the volume from the
+faces is positive, every face normal points away from the centroid (all generated blocks are
+convex), the written centroid/volume match, and the ids are unique.
+
+Examples:
+  python3 samples/generate_samples.py block --height 3 -o /tmp/block.json
+  python3 samples/generate_samples.py facade --settling-fraction 0.3 -o /tmp/facade.json
+  python3 samples/generate_samples.py all --dir samples/ --self-check
+"""
+
+import argparse
+import json
+import math
+import os
+import sys
+import time
+
+SCHEMA_VERSION = "1.0.0"
+COORD_DECIMALS = 10    # vertex coordinates are rounded to 1e-10 length units
+DERIVED_DECIMALS = 12  # centroid and volume are rounded to 1e-12
+SNAP = 1e-9            # breakpoints of a course closer than this (m) are merged
+
+
+# --------------------------------------------------------------------------------------------
+# Geometry
+# --------------------------------------------------------------------------------------------
+
+def _r(x, nd=COORD_DECIMALS):
+    """Round and drop the sign of zero, so -0.0 is never written."""
+    return round(x, nd) + 0.0
+
+
+def _sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def volume_centroid(vertices, faces):
+    """Volume and centroid of a closed polyhedron by the divergence theorem.
+
+    Each face is fanned into triangles (v0, vk, vk+1) (exact for any planar face, convex or
+    not, since the triangle areas are signed); each triangle with a reference point o forms a
+    tetrahedron of signed volume (a-o).((b-o)x(c-o))/6 and centroid (o+a+b+c)/4.
+    The reference point is the first vertex, which keeps the sums well-conditioned far from
+    the origin. Positive volume means outward-oriented faces.
+    """
+    o = vertices[0]
+    vol6 = 0.0
+    cx = cy = cz = 0.0
+    for f in faces:
+        a = _sub(vertices[f[0]], o)
+        for k in range(1, len(f) - 1):
+            b = _sub(vertices[f[k]], o)
+            c = _sub(vertices[f[k + 1]], o)
+            v = _dot(a, _cross(b, c))
+            vol6 += v
+            cx += v * (a[0] + b[0] + c[0])
+            cy += v * (a[1] + b[1] + c[1])
+            cz += v * (a[2] + b[2] + c[2])
+    if vol6 == 0.0:
+        return 0.0, tuple(o)
+    # sum over tets of vol*(o+a+b+c)/4 relative to o: centroid offset = sum(v*(a+b+c))/(4*vol6)
+    return vol6 / 6.0, (o[0] + cx / (4.0 * vol6), o[1] + cy / (4.0 * vol6), o[2] + cz / (4.0 * vol6))
+
+
+def face_normal(vertices, face):
+    """Newell's normal of a polygon (not normalised; its length is twice the area)."""
+    nx = ny = nz = 0.0
+    n = len(face)
+    for i in range(n):
+        p = vertices[face[i]]
+        q = vertices[face[(i + 1) % n]]
+        nx += (p[1] - q[1]) * (p[2] + q[2])
+        ny += (p[2] - q[2]) * (p[0] + q[0])
+        nz += (p[0] - q[0]) * (p[1] + q[1])
+    return (nx, ny, nz)
+
+
+def prism_xz(polygon_xz, y0, y1):
+    """A prism: the polygon [(x, z), ...] in the x-z plane extruded along y from y0 to y1.
+
+    Returns (vertices, faces), faces outward counter-clockwise seen from outside. The polygon
+    is first made counter-clockwise in (x right, z up); then the face at y0 (outward normal -y)
+    keeps that order, the face at y1 is reversed, and the side face of edge j -> j+1 is
+    [j, n+j, n+j+1, j+1]. For a box, the bottom face comes out clockwise seen from above.
+    """
+    pts = list(polygon_xz)
+    area2 = 0.0
+    for i in range(len(pts)):
+        x0, z0 = pts[i]
+        x1, z1 = pts[(i + 1) % len(pts)]
+        area2 += x0 * z1 - x1 * z0
+    if area2 < 0.0:
+        pts.reverse()
+    n = len(pts)
+    vertices = [[_r(x), _r(y0), _r(z)] for x, z in pts] + [[_r(x), _r(y1), _r(z)] for x, z in pts]
+    faces = [list(range(n)), [n + j for j in reversed(range(n))]]
+    for j in range(n):
+        k = (j + 1) % n
+        faces.append([j, n + j, n + k, k])
+    return vertices, faces
+
+
+def box(x0, x1, y0, y1, z0, z1):
+    """Axis-aligned box as a prism along y (8 vertices, 6 faces)."""
+    return prism_xz([(x0, z0), (x1, z0), (x1, z1), (x0, z1)], y0, y1)
+
+
+def make_block(block_id, vertices, faces, role="free", label=None):
+    vol, cen = volume_centroid(vertices, faces)
+    b = {"id": block_id}
+    if label:
+        b["label"] = label
+    b["role"] = role
+    b["vertices"] = vertices
+    b["faces"] = faces
+    b["centroid"] = [_r(c, DERIVED_DECIMALS) for c in cen]
+    b["volume"] = _r(vol, DERIVED_DECIMALS)
+    return b
+
+
+# --------------------------------------------------------------------------------------------
+# Self-check
+# --------------------------------------------------------------------------------------------
+
+def check_block(b):
+    """Return a list of problems with one block (empty when it is sound)."""
+    problems = []
+    V = b["vertices"]
+    F = b["faces"]
+    bid = b["id"]
+    for f in F:
+        for i in f:
+            if i < 0 or i >= len(V):
+                return ["block %s: face index %d out of range" % (bid, i)]
+    # Closure: every directed edge once, and its reverse once.
+    edges = {}
+    for f in F:
+        for k in range(len(f)):
+            e = (f[k], f[(k + 1) % len(f)])
+            edges[e] = edges.get(e, 0) + 1
+    for (a, c), cnt in edges.items():
+        if cnt != 1:
+            problems.append("block %s: directed edge %d->%d used %d times" % (bid, a, c, cnt))
+        if edges.get((c, a), 0) != 1:
+            problems.append("block %s: edge %d->%d has no reverse (open or misoriented)" % (bid, a, c))
+    vol, cen = volume_centroid(V, F)
+    if not vol > 0.0:
+        problems.append("block %s: volume from faces %.6g is not positive" % (bid, vol))
+        return problems
+    scale = vol ** (1.0 / 3.0)
+    for fi, f in enumerate(F):
+        n = face_normal(V, f)
+        ln = math.sqrt(_dot(n, n))
+        if ln == 0.0:
+            problems.append("block %s: face %d is degenerate" % (bid, fi))
+            continue
+        n = (n[0] / ln, n[1] / ln, n[2] / ln)
+        p0 = V[f[0]]
+        for i in f:
+            d = _dot(_sub(V[i], p0), n)
+            if abs(d) > 1e-9 * max(1.0, scale):
+                problems.append("block %s: face %d not planar (%.3g)" % (bid, fi, d))
+                break
+        # convex blocks: the centroid lies on the inner side of every face plane
+        if _dot(_sub(cen, p0), n) >= 0.0:
+            problems.append("block %s: face %d normal does not point outward" % (bid, fi))
+    if "volume" in b and abs(b["volume"] - vol) > 1e-9 * max(1.0, vol):
+        problems.append("block %s: written volume %r != %r" % (bid, b["volume"], vol))
+    if "centroid" in b:
+        for k in range(3):
+            if abs(b["centroid"][k] - cen[k]) > 1e-9 * max(1.0, scale):
+                problems.append("block %s: written centroid %r != %r" % (bid, b["centroid"], cen))
+                break
+    return problems
+
+
+def self_check(model, name):
+    problems = []
+    ids = set()
+    for b in model["blocks"]:
+        if b["id"] in ids:
+            problems.append("duplicate block id %s" % b["id"])
+        ids.add(b["id"])
+        problems.extend(check_block(b))
+    if problems:
+        for p in problems[:50]:
+            sys.stderr.write("self-check %s: %s\n" % (name, p))
+        if len(problems) > 50:
+            sys.stderr.write("self-check %s: ... %d more\n" % (name, len(problems) - 50))
+        return False
+    vol = sum(b["volume"] for b in model["blocks"])
+    sys.stderr.write("self-check %s: OK, %d blocks, total volume %.6g\n"
+                     % (name, len(model["blocks"]), vol))
+    return True
+
+
+# --------------------------------------------------------------------------------------------
+# Model skeleton and output
+# --------------------------------------------------------------------------------------------
+
+def model_skeleton(title, args):
+    return {
+        "schema_version": SCHEMA_VERSION,
+        "title": title,
+        "units": {"length": "m", "force": "kN", "unit_weight": "kN/m3"},
+        "gravity": "-z",
+        "defaults": {"unit_weight": args.unit_weight, "friction": args.friction},
+        "blocks": [],
+    }
+
+
+def seismic_analysis(direction):
+    return {"type": "load_multiplier", "seismic": {"direction": list(direction)}}
+
+
+def dumps_model(model, compact):
+    """Compact: one line, no spaces. Otherwise readable: two-space indent, one block per line."""
+    if compact:
+        return json.dumps(model, separators=(",", ":")) + "\n"
+    lines = ["{"]
+    keys = list(model.keys())
+    for i, k in enumerate(keys):
+        comma = "," if i + 1 < len(keys) else ""
+        if k == "blocks":
+            lines.append('  "blocks": [')
+            nb = len(model["blocks"])
+            for j, b in enumerate(model["blocks"]):
+                lines.append("    " + json.dumps(b, separators=(", ", ": "))
+                             + ("," if j + 1 < nb else ""))
+            lines.append("  ]" + comma)
+        else:
+            lines.append("  %s: %s%s" % (json.dumps(k), json.dumps(model[k], separators=(", ", ": ")),
+                                         comma))
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def write_model(model, path, compact):
+    text = dumps_model(model, compact)
+    if path is None or path == "-":
+        sys.stdout.write(text)
+    else:
+        d = os.path.dirname(path)
+        if d:
+            os.makedirs(d, exist_ok=True)
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(text)
+
+
+# --------------------------------------------------------------------------------------------
+# Running-bond courses
+# --------------------------------------------------------------------------------------------
+
+def _merge_sorted(xs):
+    out = []
+    for x in sorted(xs):
+        if not out or x - out[-1] > SNAP:
+            out.append(x)
+    return out
+
+
+def course_breakpoints(n_blocks, block_len, shifted):
+    """Joint positions of one running-bond course of length n_blocks * block_len, from 0 to L.
+
+    Unshifted courses have n_blocks whole blocks; shifted courses start and end with a half
+    block (n_blocks - 1 whole blocks between), so both wall ends are straight.
+    """
+    L = n_blocks * block_len
+    if not shifted:
+        return [k * block_len for k in range(n_blocks + 1)]
+    return [0.0] + [(k + 0.5) * block_len for k in range(n_blocks)] + [L]
+
+
+def course_segments(breaks, cuts=(), holes=(), merged=()):
+    """Segments [a, b] of a course.
+
+    breaks: the course's regular joint positions; cuts: extra joint positions (opening jambs,
+    lintel ends); holes: intervals left empty (openings); merged: intervals that become a single
+    segment (a lintel), whose interior joints are dropped.
+    """
+    xs = list(breaks) + list(cuts)
+    for a, b in list(holes) + list(merged):
+        xs += [a, b]
+    xs = _merge_sorted(xs)
+    xs = [x for x in xs if not any(a + SNAP < x < b - SNAP for a, b in merged)]
+    segs = []
+    for a, b in zip(xs[:-1], xs[1:]):
+        mid = 0.5 * (a + b)
+        if any(h0 - SNAP <= mid <= h1 + SNAP for h0, h1 in holes):
+            continue
+        segs.append((a, b))
+    return segs
+
+
+def count_box_contacts(courses, base_segments, joint_tol=SNAP):
+    """Interfaces a detector will find in a wall of box blocks (for the facade report).
+
+    courses: per course a list of (x0, x1) in order; base_segments: the base blocks' x ranges.
+    Counts head joints (neighbours in a course that touch), bed joints (overlapping x ranges of
+    consecutive courses, base included). Every interface is a rectangle: 4 contact points.
+    """
+    def overlaps(lo, hi):
+        n = 0
+        i = j = 0
+        while i < len(lo) and j < len(hi):
+            a = max(lo[i][0], hi[j][0])
+            b = min(lo[i][1], hi[j][1])
+            if b - a > joint_tol:
+                n += 1
+            if lo[i][1] < hi[j][1]:
+                i += 1
+            else:
+                j += 1
+        return n
+    n_if = 0
+    for segs in courses:
+        for (a0, a1), (b0, b1) in zip(segs[:-1], segs[1:]):
+            if abs(b0 - a1) <= joint_tol:
+                n_if += 1
+    n_if += overlaps(sorted(base_segments), courses[0])
+    for lo, hi in zip(courses[:-1], courses[1:]):
+        n_if += overlaps(lo, hi)
+    return n_if
+
+
+# --------------------------------------------------------------------------------------------
+# Scenes
+# --------------------------------------------------------------------------------------------
+
+def scene_block(args):
+    b, d, h = args.width, args.depth, args.height
+    m, t = args.base_margin, args.base_thickness
+    model = model_skeleton("single block %g x %g x %g m on a fixed base, seismic +x; "
+                           "closed form alpha = min(b/h, mu) = %g"
+                           % (b, d, h, min(b / h, args.friction)), args)
+    blocks = model["blocks"]
+    blocks.append(make_block("base", *box(-b / 2 - m, b / 2 + m, -d / 2 - m, d / 2 + m, -t, 0.0),
+                             role="fixed"))
+    blocks.append(make_block("block", *box(-b / 2, b / 2, -d / 2, d / 2, 0.0, h)))
+    model["analysis"] = seismic_analysis([1, 0, 0])
+    return model
+
+
+def scene_column(args):
+    n, b, d, hb = args.count, args.width, args.depth, args.block_height
+    m, t = args.base_margin, args.base_thickness
+    H = n * hb
+    model = model_skeleton("column of %d blocks %g x %g x %g m on a fixed base, seismic +x; "
+                           "closed form alpha = min(b/H, mu) = %g"
+                           % (n, b, d, hb, min(b / H, args.friction)), args)
+    blocks = model["blocks"]
+    blocks.append(make_block("base", *box(-b / 2 - m, b / 2 + m, -d / 2 - m, d / 2 + m, -t, 0.0),
+                             role="fixed"))
+    for i in range(n):
+        blocks.append(make_block("c%02d" % i, *box(-b / 2, b / 2, -d / 2, d / 2, i * hb, (i + 1) * hb)))
+    model["analysis"] = seismic_analysis([1, 0, 0])
+    return model
+
+
+def scene_arch(args):
+    N, R, t, d = args.voussoirs, args.radius, args.thickness, args.depth
+    if t >= 2 * R:
+        raise SystemExit("arch: thickness must be smaller than the diameter")
+    ri, re = R - t / 2.0, R + t / 2.0
+    a, ha = args.abutment_margin, args.abutment_height
+    y0, y1 = -d / 2.0, d / 2.0
+    model = model_skeleton("semicircular arch, %d voussoirs, R = %g m, t = %g m (t/R = %.4g; "
+                           "Couplet-Heyman minimum 0.1075), depth %g m, on fixed abutments; "
+                           "seismic +x" % (N, R, t, t / R, d), args)
+    blocks = model["blocks"]
+    blocks.append(make_block("abutment_left", *box(-re - a, -ri + a, y0, y1, -ha, 0.0), role="fixed"))
+    blocks.append(make_block("abutment_right", *box(ri - a, re + a, y0, y1, -ha, 0.0), role="fixed"))
+    width = len(str(N - 1))
+    for i in range(N):
+        # voussoir i between the radial planes at phi0 and phi1, numbered from the left springing
+        phi0 = math.pi * (1.0 - i / float(N))
+        phi1 = math.pi * (1.0 - (i + 1) / float(N))
+        c0, s0, c1, s1 = math.cos(phi0), math.sin(phi0), math.cos(phi1), math.sin(phi1)
+        poly = [(ri * c0, ri * s0), (re * c0, re * s0), (re * c1, re * s1), (ri * c1, ri * s1)]
+        blocks.append(make_block("v%0*d" % (width, i), *prism_xz(poly, y0, y1)))
+    model["analysis"] = seismic_analysis([1, 0, 0])
+    return model
+
+
+def _wall_blocks(blocks, courses, bt, hb, prefix="c"):
+    """Append box blocks for courses = [(z0, [(x0, x1, id_or_None), ...]), ...]."""
+    for ci, (z0, segs) in enumerate(courses):
+        k = 0
+        for x0, x1, special in segs:
+            bid = special if special else "%s%02d_%02d" % (prefix, ci, k)
+            if not special:
+                k += 1
+            blocks.append(make_block(bid, *box(x0, x1, 0.0, bt, z0, z0 + hb)))
+
+
+def scene_wall_opening(args):
+    nc, nb = args.courses, args.blocks
+    bl, bt, hb = args.block_length, args.block_thickness, args.block_height
+    L = nb * bl
+    ow = args.opening_width * bl
+    oh = args.opening_height
+    sill = args.sill_course if args.sill_course is not None else (nc - oh) // 2
+    lintel_course = sill + oh
+    if oh < 1 or sill < 0 or lintel_course >= nc:
+        raise SystemExit("wall-opening: the opening (sill course %d, %d courses) and its lintel "
+                         "must fit in %d courses" % (sill, oh, nc))
+    ox0 = (L - ow) / 2.0
+    ox1 = ox0 + ow
+    lx0, lx1 = ox0 - args.lintel_bearing, ox1 + args.lintel_bearing
+    if ox0 <= SNAP or lx0 < -SNAP or lx1 > L + SNAP:
+        raise SystemExit("wall-opening: opening or lintel wider than the wall")
+    lx0, lx1 = max(lx0, 0.0), min(lx1, L)
+    m, t = args.base_margin, args.base_thickness
+    model = model_skeleton("running-bond wall %d courses x %d blocks (%g x %g x %g m) with a "
+                           "%g x %g m opening and a lintel, on a fixed base; seismic +x"
+                           % (nc, nb, bl, bt, hb, ow, oh * hb, ), args)
+    blocks = model["blocks"]
+    blocks.append(make_block("base", *box(-m, L + m, -m, bt + m, -t, 0.0), role="fixed"))
+    courses = []
+    smallest = bl
+    for c in range(nc):
+        br = course_breakpoints(nb, bl, c % 2 == 1)
+        if sill <= c < lintel_course:
+            segs = [(a, b, None) for a, b in course_segments(br, holes=[(ox0, ox1)])]
+        elif c == lintel_course:
+            segs = [(a, b, "lintel" if abs(a - lx0) <= SNAP and abs(b - lx1) <= SNAP else None)
+                    for a, b in course_segments(br, merged=[(lx0, lx1)])]
+        else:
+            segs = [(a, b, None) for a, b in course_segments(br)]
+        smallest = min([smallest] + [b - a for a, b, _ in segs])
+        courses.append((c * hb, segs))
+    if smallest < 0.1 * bl:
+        sys.stderr.write("wall-opening: warning: a block only %.3g m long (opening or lintel off "
+                         "the half-block grid)\n" % smallest)
+    _wall_blocks(blocks, courses, bt, hb)
+    model["analysis"] = seismic_analysis([1, 0, 0])
+    return model
+
+
+def _base_split(L, m, fraction, gap):
+    """x ranges of the fixed and the moving base blocks (the moving one is the right part)."""
+    xs = L * (1.0 - fraction)
+    return (-m, xs - gap / 2.0), (xs + gap / 2.0, L + m)
+
+
+def scene_wall_settlement(args):
+    nc, nb = args.courses, args.blocks
+    bl, bt, hb = args.block_length, args.block_thickness, args.block_height
+    L = nb * bl
+    f = args.settling_fraction
+    if not 0.0 < f < 1.0:
+        raise SystemExit("wall-settlement: --settling-fraction must be in (0, 1)")
+    m, t = args.base_margin, args.base_thickness
+    model = model_skeleton("running-bond wall %d courses x %d blocks (%g x %g x %g m) on a fixed "
+                           "base (left) and a moving support under the right %g %% of its length; "
+                           "settlement" % (nc, nb, bl, bt, hb, 100 * f), args)
+    blocks = model["blocks"]
+    (fa, fb), (ma, mb) = _base_split(L, m, f, args.support_gap)
+    blocks.append(make_block("base_fixed", *box(fa, fb, -m, bt + m, -t, 0.0), role="fixed"))
+    blocks.append(make_block("base_moving", *box(ma, mb, -m, bt + m, -t, 0.0), role="moving_support"))
+    courses = []
+    for c in range(nc):
+        segs = course_segments(course_breakpoints(nb, bl, c % 2 == 1))
+        courses.append((c * hb, [(a, b, None) for a, b in segs]))
+    _wall_blocks(blocks, courses, bt, hb)
+    model["analysis"] = {"type": "settlement"}
+    return model
+
+
+def scene_facade(args):
+    nx, ny = args.nx, args.ny
+    bl, bt, hb = args.block_length, args.block_thickness, args.block_height
+    L = nx * bl
+    m, t = args.base_margin, args.base_thickness
+    what = "fixed base"
+    model = model_skeleton("", args)
+    blocks = model["blocks"]
+    if args.settling_fraction is not None:
+        f = args.settling_fraction
+        if not 0.0 < f < 1.0:
+            raise SystemExit("facade: --settling-fraction must be in (0, 1)")
+        (fa, fb), (ma, mb) = _base_split(L, m, f, args.support_gap)
+        blocks.append(make_block("base_fixed", *box(fa, fb, -m, bt + m, -t, 0.0), role="fixed"))
+        blocks.append(make_block("base_moving", *box(ma, mb, -m, bt + m, -t, 0.0),
+                                 role="moving_support"))
+        base_segs = [(fa, fb), (ma, mb)]
+        what = "fixed base and a moving support under the right %g %%; settlement" % (100 * f)
+        model["analysis"] = {"type": "settlement"}
+    else:
+        blocks.append(make_block("base", *box(-m, L + m, -m, bt + m, -t, 0.0), role="fixed"))
+        base_segs = [(-m, L + m)]
+        direction = [0, 1, 0] if args.seismic == "y" else [1, 0, 0]
+        what = "fixed base; seismic +%s" % (args.seismic or "x")
+        model["analysis"] = seismic_analysis(direction)
+    seg_courses = []
+    courses = []
+    for c in range(ny):
+        segs = course_segments(course_breakpoints(nx, bl, c % 2 == 1))
+        seg_courses.append(segs)
+        courses.append((c * hb, [(a, b, None) for a, b in segs]))
+    _wall_blocks(blocks, courses, bt, hb, prefix="r")
+    n_if = count_box_contacts(seg_courses, base_segs)
+    model["title"] = ("facade: running-bond wall %d x %d blocks (%g x %g x %g m), %d blocks, on a %s"
+                      % (nx, ny, bl, bt, hb, len(blocks), what))
+    sys.stderr.write("facade: %d blocks, %d interfaces expected from detection, %d contact points\n"
+                     % (len(blocks), n_if, 4 * n_if))
+    return model
+
+
+# --------------------------------------------------------------------------------------------
+# CLI
+# --------------------------------------------------------------------------------------------
+
+BUNDLED = [
+    ("block.json", "block"),
+    ("column.json", "column"),
+    ("arch.json", "arch"),
+    ("wall_opening.json", "wall-opening"),
+    ("wall_settlement.json", "wall-settlement"),
+]
+
+SCENES = {
+    "block": scene_block,
+    "column": scene_column,
+    "arch": scene_arch,
+    "wall-opening": scene_wall_opening,
+    "wall-settlement": scene_wall_settlement,
+    "facade": scene_facade,
+}
+
+
+def build_parser():
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("--unit-weight", type=float, default=18.0,
+                        help="unit weight of the blocks, kN/m3 (default 18)")
+    common.add_argument("--friction", type=float, default=0.6,
+                        help="friction coefficient mu (default 0.6)")
+    common.add_argument("--self-check", action="store_true",
+                        help="check every block's closure, orientation, volume and centroid")
+    out = argparse.ArgumentParser(add_help=False)
+    out.add_argument("-o", "--output", default=None, help="output file (default stdout)")
+    fmt = out.add_mutually_exclusive_group()
+    fmt.add_argument("--compact", dest="compact", action="store_true", default=None,
+                     help="write the JSON on one line")
+    fmt.add_argument("--pretty", dest="compact", action="store_false",
+                     help="write the JSON one block per line")
+    base = argparse.ArgumentParser(add_help=False)
+    base.add_argument("--base-margin", type=float, default=0.5,
+                      help="how far the base slab extends beyond the structure, m (default 0.5)")
+    base.add_argument("--base-thickness", type=float, default=0.5,
+                      help="base slab thickness, m (default 0.5)")
+
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter,
+                                epilog="Run '<subcommand> -h' for a scene's options.")
+    sub = p.add_subparsers(dest="scene", metavar="SCENE")
+    sub.required = True
+    D = argparse.ArgumentDefaultsHelpFormatter
+
+    s = sub.add_parser("block", parents=[common, out, base], formatter_class=D,
+                       help="a single block on a fixed base, seismic +x (alpha = min(b/h, mu))")
+    s.add_argument("--width", type=float, default=1.0, help="b, along x, m")
+    s.add_argument("--depth", type=float, default=1.0, help="d, along y, m")
+    s.add_argument("--height", type=float, default=2.0, help="h, along z, m")
+
+    s = sub.add_parser("column", parents=[common, out, base], formatter_class=D,
+                       help="n stacked blocks on a fixed base, seismic +x (alpha = min(b/H, mu))")
+    s.add_argument("--count", type=int, default=4, help="number of blocks")
+    s.add_argument("--width", type=float, default=0.5, help="b, along x, m")
+    s.add_argument("--depth", type=float, default=0.5, help="along y, m")
+    s.add_argument("--block-height", type=float, default=0.5, help="height of one block, m")
+
+    s = sub.add_parser("arch", parents=[common, out], formatter_class=D,
+                       help="semicircular arch of radial voussoirs on fixed abutments, seismic +x")
+    s.add_argument("--voussoirs", type=int, default=16, help="N")
+    s.add_argument("--radius", type=float, default=5.0, help="centreline radius R, m")
+    s.add_argument("--thickness", type=float, default=0.8, help="radial thickness t, m")
+    s.add_argument("--depth", type=float, default=1.0, help="depth along y, m")
+    s.add_argument("--abutment-margin", type=float, default=0.5,
+                   help="how far each abutment extends beyond the springing joint, m")
+    s.add_argument("--abutment-height", type=float, default=1.0, help="abutment height, m")
+
+    wall = argparse.ArgumentParser(add_help=False)
+    wall.add_argument("--block-length", type=float, default=0.44, help="along x, m")
+    wall.add_argument("--block-thickness", type=float, default=0.38, help="along y, m")
+    wall.add_argument("--block-height", type=float, default=0.25, help="along z, m")
+
+    s = sub.add_parser("wall-opening", parents=[common, out, base, wall], formatter_class=D,
+                       help="running-bond wall with a window and a lintel, seismic +x")
+    s.add_argument("--courses", type=int, default=12, help="number of courses")
+    s.add_argument("--blocks", type=int, default=10, help="whole blocks per course")
+    s.add_argument("--opening-width", type=int, default=2, help="opening width in blocks (centred)")
+    s.add_argument("--opening-height", type=int, default=4, help="opening height in courses")
+    s.add_argument("--sill-course", type=int, default=None,
+                   help="first course of the opening (default: centred)")
+    s.add_argument("--lintel-bearing", type=float, default=0.44,
+                   help="how far the lintel runs past each jamb, m")
+
+    gap_help = ("gap between the fixed and the moving base blocks, m: two supports that touch "
+                "would form an interface that can hold the moving one")
+    s = sub.add_parser("wall-settlement", parents=[common, out, base, wall], formatter_class=D,
+                       help="running-bond wall on a fixed and a moving base block, settlement")
+    s.add_argument("--courses", type=int, default=10, help="number of courses")
+    s.add_argument("--blocks", type=int, default=12, help="whole blocks per course")
+    s.add_argument("--settling-fraction", type=float, default=0.4,
+                   help="fraction of the wall length (right end) over the moving support")
+    s.add_argument("--support-gap", type=float, default=0.01, help=gap_help)
+
+    s = sub.add_parser("facade", parents=[common, out, base], formatter_class=D,
+                       help="façade-scale running-bond wall (default 50 x 38, ~1900 blocks)")
+    s.add_argument("--nx", type=int, default=50, help="whole blocks per course")
+    s.add_argument("--ny", type=int, default=38, help="number of courses")
+    s.add_argument("--block-length", type=float, default=0.44, help="along x, m")
+    s.add_argument("--block-thickness", type=float, default=0.38, help="along y, m")
+    s.add_argument("--block-height", type=float, default=0.50, help="along z, m")
+    g = s.add_mutually_exclusive_group()
+    g.add_argument("--settling-fraction", type=float, default=None,
+                   help="make the right F of the base a moving support; settlement analysis")
+    g.add_argument("--seismic", choices=["x", "y"], default=None,
+                   help="seismic analysis along +x or +y (the default is +x)")
+    s.add_argument("--support-gap", type=float, default=0.01, help=gap_help)
+
+    s = sub.add_parser("all", parents=[common], formatter_class=D,
+                       help="regenerate every bundled sample with its default sizes")
+    s.add_argument("--dir", default=os.path.dirname(os.path.abspath(__file__)),
+                   help="output directory")
+    return p
+
+
+def main(argv=None):
+    p = build_parser()
+    args = p.parse_args(argv)
+    t0 = time.time()
+    if args.scene == "all":
+        ok = True
+        for fname, scene in BUNDLED:
+            # defaults of that scene, with the common options of this call
+            sargs = p.parse_args([scene, "--unit-weight", repr(args.unit_weight),
+                                  "--friction", repr(args.friction)])
+            model = SCENES[scene](sargs)
+            if args.self_check and not self_check(model, fname):
+                ok = False
+                continue
+            path = os.path.join(args.dir, fname)
+            write_model(model, path, compact=False)
+            sys.stderr.write("wrote %s (%d blocks)\n" % (path, len(model["blocks"])))
+        return 0 if ok else 1
+    model = SCENES[args.scene](args)
+    if args.self_check and not self_check(model, args.scene):
+        return 1
+    compact = args.compact
+    if compact is None:
+        compact = len(model["blocks"]) > 200
+    write_model(model, args.output, compact)
+    if args.output not in (None, "-"):
+        sys.stderr.write("wrote %s (%d blocks, %.2f s)\n"
+                         % (args.output, len(model["blocks"]), time.time() - t0))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

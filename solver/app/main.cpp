@@ -1,0 +1,200 @@
+// rbla: the command-line program. Thin by design: every step is a library call the tests make too.
+//
+// Exit codes (also in README.md):
+//   0  success (the verdict may be "cannot stand" or "no mechanism": those are answers)
+//   1  usage error (unknown command or option)
+//   2  invalid input (the message names the JSON pointer and what was expected)
+//   3  solver failure (numerical failure, time or iteration limit)
+//   4  the output could not be written
+//   5  the requested analysis is not available in this build
+#include "io/atomic_file.hpp"
+#include "io/load_model.hpp"
+#include "io/model_reader.hpp"
+#include "io/result_writer.hpp"
+#include "model/errors.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+
+namespace {
+
+enum ExitCode : int {
+  kSuccess = 0,
+  kUsage = 1,
+  kInvalidInput = 2,
+  kSolverFailure = 3,
+  kOutputError = 4,
+  kNotAvailable = 5,
+};
+
+struct CommonOptions {
+  std::string model_path;
+  std::string output_path;
+  std::string svg_dir;
+  bool quiet = false;
+};
+
+void progress(const CommonOptions& options, const std::string& line) {
+  if (!options.quiet) std::cerr << "rbla: " << line << "\n";
+}
+
+std::string seconds_text(double seconds) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(3) << seconds << " s";
+  return out.str();
+}
+
+void report_warnings(const rbla::model::Model& model, const CommonOptions& options) {
+  if (options.quiet) return;
+  for (const auto& warning : model.warnings) {
+    std::cerr << "rbla: warning [" << warning.code << "]" << (warning.pointer.empty() ? "" : " at " + warning.pointer)
+              << ": " << warning.message << "\n";
+  }
+}
+
+int report_invalid(const rbla::model::ModelError& error) {
+  std::cerr << "rbla: invalid input:\n";
+  for (const auto& issue : error.issues()) {
+    std::cerr << "  " << (issue.pointer.empty() ? "(document)" : issue.pointer) << ": " << issue.message << "\n";
+  }
+  return kInvalidInput;
+}
+
+/// Loads the model with progress lines; returns false (after reporting) on invalid input.
+bool load(const CommonOptions& options, rbla::io::LoadedModel& loaded, int& exit_code) {
+  progress(options, "reading " + (options.model_path == "-" ? std::string("standard input") : options.model_path));
+  try {
+    loaded = rbla::io::load_model_file(options.model_path);
+  } catch (const rbla::model::ModelError& error) {
+    exit_code = report_invalid(error);
+    return false;
+  }
+  const auto& m = loaded.model;
+  progress(options, "model: " + std::to_string(m.blocks.size()) + " blocks, " + std::to_string(m.interfaces.size()) +
+                        " interfaces, " + std::to_string(m.num_contact_points()) + " contact points (read+validate " +
+                        seconds_text(loaded.timings.read_seconds + loaded.timings.validate_seconds) + ", geometry " +
+                        seconds_text(loaded.timings.geometry_seconds) + ", detection " +
+                        seconds_text(loaded.timings.detect_seconds) + ")");
+  report_warnings(m, options);
+  return true;
+}
+
+int run_validate(const CommonOptions& options) {
+  rbla::io::LoadedModel loaded;
+  int exit_code = kSuccess;
+  if (!load(options, loaded, exit_code)) return exit_code;
+  std::cout << "valid: " << loaded.model.blocks.size() << " blocks, " << loaded.model.interfaces.size()
+            << " interfaces, " << loaded.model.num_contact_points() << " contact points, "
+            << loaded.model.warnings.size() << " warnings\n";
+  return kSuccess;
+}
+
+int write_output(const std::string& path, const std::string& text) {
+  try {
+    rbla::io::write_file_atomically(path, text);
+  } catch (const std::exception& error) {
+    std::cerr << "rbla: " << error.what() << "\n";
+    return kOutputError;
+  }
+  return kSuccess;
+}
+
+int run_info(const CommonOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  rbla::io::LoadedModel loaded;
+  int exit_code = kSuccess;
+  if (!load(options, loaded, exit_code)) return exit_code;
+  const rbla::model::Model& m = loaded.model;
+  const nlohmann::json summary = rbla::io::model_summary_json(m);
+  const auto& box = summary["bounding_box"];
+  std::ostream& out = options.output_path == "-" ? std::cerr : std::cout;
+  out << "title:           " << (m.title.empty() ? "(none)" : m.title) << "\n"
+      << "units:           length " << m.units.length_name << ", force " << m.units.force_name << ", unit weight "
+      << m.units.unit_weight_name << ", gravity " << m.gravity_axis << "\n"
+      << "blocks:          " << summary["num_blocks"] << " (free " << summary["num_free_blocks"] << ", fixed "
+      << summary["num_fixed_blocks"] << ", moving supports " << summary["num_moving_blocks"] << ")\n"
+      << "interfaces:      " << summary["num_interfaces"] << " (detected " << summary["num_detected_interfaces"]
+      << ")\n"
+      << "contact points:  " << summary["num_contact_points"] << "\n"
+      << "bounding box:    " << box["min"].dump() << " .. " << box["max"].dump() << " " << m.units.length_name << "\n"
+      << "total weight:    " << summary["total_weight"].get<double>() << " " << m.units.force_name
+      << " (free blocks)\n"
+      << "analysis:        " << rbla::model::to_string(m.analysis.type) << ", "
+      << rbla::model::to_string(m.analysis.friction_model) << ", cone " << rbla::model::to_string(m.analysis.cone)
+      << "\n"
+      << "warnings:        " << m.warnings.size() << "\n"
+      << "model stage:     " << seconds_text(loaded.timings.total_seconds) << " (read "
+      << seconds_text(loaded.timings.read_seconds) << ", validate " << seconds_text(loaded.timings.validate_seconds)
+      << ", geometry " << seconds_text(loaded.timings.geometry_seconds) << ", detection "
+      << seconds_text(loaded.timings.detect_seconds) << ")\n";
+  if (!options.output_path.empty()) {
+    rbla::io::StageTimings timings = loaded.timings;
+    timings.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const nlohmann::json result = rbla::io::model_only_result(m, timings, options.model_path);
+    return write_output(options.output_path, result.dump(1) + "\n");
+  }
+  return kSuccess;
+}
+
+int run_solve(const CommonOptions& options) {
+  rbla::io::LoadedModel loaded;
+  int exit_code = kSuccess;
+  if (!load(options, loaded, exit_code)) return exit_code;
+  // The limit analysis (equilibrium assembly, conic solve, mechanism) is not part of this build
+  // yet. Say so plainly rather than write a result that was not computed.
+  std::cerr << "rbla: the model is valid, but the limit analysis is not available in this build yet; "
+               "no result was written. Use `rbla info MODEL -o FILE` for the model summary.\n";
+  return kNotAvailable;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"rbla: rigid block limit analysis of masonry structures"};
+  app.set_version_flag("--version", std::string("rbla ") + RBLA_VERSION);
+  app.require_subcommand(1);
+  CommonOptions options;
+
+  CLI::App* solve = app.add_subcommand("solve", "Analyse a model and write the result JSON");
+  solve->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
+  solve->add_option("-o,--output", options.output_path, "Result JSON file ('-' for standard output)");
+  solve->add_option("--svg", options.svg_dir, "Folder for the mechanism and convergence SVG pictures");
+  solve->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+
+  CLI::App* validate = app.add_subcommand("validate", "Check a model against the schema and its geometry");
+  validate->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
+  validate->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+
+  CLI::App* info = app.add_subcommand("info", "Summarise a model: blocks, interfaces, contact points, warnings");
+  info->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
+  info->add_option("-o,--output", options.output_path,
+                   "Also write the summary as a result JSON with status model_only ('-' for standard output)");
+  info->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kUsage;
+  }
+
+  try {
+    if (*solve) return run_solve(options);
+    if (*validate) return run_validate(options);
+    if (*info) return run_info(options);
+  } catch (const rbla::model::ModelError& error) {
+    return report_invalid(error);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "rbla: out of memory\n";
+    return kSolverFailure;
+  }
+  return kUsage;
+}

@@ -1,0 +1,58 @@
+// Geometry of one polyhedral block: face normals and areas, volume and centroid, closure.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <string>
+#include <vector>
+
+namespace rbla::geometry {
+
+using Vec3 = Eigen::Vector3d;
+using FaceList = std::vector<std::vector<int>>;
+
+/// Area vector, centroid and flatness of one planar face.
+struct FaceGeometry {
+  Vec3 area_vector = Vec3::Zero();  // Newell's vector: |.| = area, direction = outward normal
+  Vec3 normal = Vec3::UnitZ();      // unit outward normal (right-hand rule on the vertex order)
+  double area = 0.0;
+  Vec3 centroid = Vec3::Zero();     // area centroid
+  double max_plane_deviation = 0.0; // largest distance of a vertex from the face's plane
+};
+
+/// Newell's method: A = 1/2 sum_i (v_i - o) x (v_{i+1} - o), exact for any planar simple polygon,
+/// convex or not (Newell 1972; Sutherland, Sproull & Schumacker 1974). The centroid is the
+/// area-weighted sum of the fan triangles' centroids, with signed areas along the normal, so it too
+/// is exact for non-convex faces.
+FaceGeometry face_geometry(const std::vector<Vec3>& vertices, const std::vector<int>& face);
+
+struct MassProperties {
+  double volume = 0.0;           // signed: negative when the faces point inward
+  Vec3 centroid = Vec3::Zero();
+  double surface_area = 0.0;
+};
+
+/// Volume and centroid by the divergence theorem: the closed surface is split into signed
+/// tetrahedra (r, a, b, c) over a fan triangulation of each face, with r a reference point inside
+/// the block's bounding box (which keeps round-off small for models far from the origin):
+///   V = sum 1/6 (a-r).((b-r) x (c-r)),   g = r + sum V_t (a+b+c-3r)/4 / V.
+/// Exact for closed, consistently oriented surfaces with planar faces, convex or not
+/// (e.g. Zhang & Chen 2001, "Efficient feature extraction for 2D/3D objects in mesh representation").
+MassProperties mass_properties(const std::vector<Vec3>& vertices, const FaceList& faces);
+
+/// Result of checking that the faces close a volume with a consistent orientation.
+struct ClosureCheck {
+  bool closed = true;        // every edge is matched by an edge of opposite direction
+  bool consistent = true;    // no edge is used twice in the same direction
+  bool needed_t_junction_split = false;  // matched only after splitting edges at vertices on them
+  std::string detail;        // the first offending edge, in vertex indices of the input
+};
+
+/// Combinatorial closure after merging vertices closer than `tol`: each directed edge (u,v) must be
+/// matched by (v,u). CAD meshes often have T-junctions (a vertex of one face lying on an edge of
+/// another); when the plain check fails, edges are split at the vertices lying on them and the
+/// check is repeated.
+ClosureCheck check_closure(const std::vector<Vec3>& vertices, const FaceList& faces, double tol);
+
+}  // namespace rbla::geometry

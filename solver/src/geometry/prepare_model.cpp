@@ -1,0 +1,230 @@
+#include "geometry/prepare_model.hpp"
+
+#include "geometry/polyhedron.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace rbla::geometry {
+
+using model::InputIssue;
+using model::Vec3;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string format(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+/// Lengths in messages are given back in the user's unit.
+std::string length_text(double metres, const model::Units& units) {
+  return format(metres / units.length_to_m) + " " + units.length_name;
+}
+
+void prepare_block(model::Block& block, std::size_t index, double model_tolerance, const model::Units& units,
+                   std::vector<InputIssue>& errors, std::vector<model::Warning>& warnings) {
+  const std::string pointer = "/blocks/" + std::to_string(index);
+  const std::string name = "block '" + block.id + "'";
+  Vec3 lo = block.vertices[0], hi = block.vertices[0];
+  for (const Vec3& v : block.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const double diagonal = (hi - lo).norm();
+  if (diagonal == 0.0) {
+    errors.push_back({pointer + "/vertices", name + " is degenerate: all its vertices coincide"});
+    return;
+  }
+  // Vertices closer than this are the same vertex; relative to the block so that a 1 mm wedge in
+  // a 100 m model is still checked at its own scale.
+  const double merge_tol = std::min(model_tolerance, 1e-6 * diagonal);
+
+  bool faces_ok = true;
+  for (std::size_t f = 0; f < block.faces.size(); ++f) {
+    const std::string face_pointer = pointer + "/faces/" + std::to_string(f);
+    std::set<int> distinct(block.faces[f].begin(), block.faces[f].end());
+    if (distinct.size() < 3) {
+      errors.push_back({face_pointer, name + ": face " + std::to_string(f) + " has fewer than 3 distinct vertices"});
+      faces_ok = false;
+      continue;
+    }
+    const FaceGeometry face = face_geometry(block.vertices, block.faces[f]);
+    if (face.area <= 1e-10 * diagonal * diagonal) {
+      errors.push_back({face_pointer, name + ": face " + std::to_string(f) + " has zero area"});
+      faces_ok = false;
+      continue;
+    }
+    if (face.max_plane_deviation > std::max(model_tolerance, 1e-6 * diagonal)) {
+      warnings.push_back({"non_planar_face",
+                          name + ": face " + std::to_string(f) + " deviates from its plane by " +
+                              length_text(face.max_plane_deviation, units) +
+                              " (more than the distance tolerance); contacts on it are approximate",
+                          face_pointer});
+    }
+  }
+  if (!faces_ok) return;
+
+  const ClosureCheck closure = check_closure(block.vertices, block.faces, merge_tol);
+  if (!closure.consistent) {
+    errors.push_back({pointer + "/faces", name + " has inconsistently oriented faces: " + closure.detail});
+    return;
+  }
+  if (!closure.closed) {
+    errors.push_back({pointer + "/faces", name + " is open (its faces do not close a volume): " + closure.detail});
+    return;
+  }
+  if (closure.needed_t_junction_split) {
+    warnings.push_back({"t_junctions", name + " has vertices lying on edges of other faces (T-junctions); "
+                                              "accepted as closed",
+                        pointer + "/faces"});
+  }
+
+  const MassProperties mass = mass_properties(block.vertices, block.faces);
+  if (std::abs(mass.volume) <= 1e-9 * diagonal * diagonal * diagonal) {
+    errors.push_back({pointer, name + " has zero volume (flat or collapsed)"});
+    return;
+  }
+  if (mass.volume < 0.0) {
+    errors.push_back({pointer + "/faces", name + " is inverted: its faces are ordered clockwise seen from "
+                                                 "outside (inward normals); reverse every face"});
+    return;
+  }
+  block.volume = mass.volume;
+  block.centroid = mass.centroid;
+
+  if (block.cad_volume && std::abs(*block.cad_volume - block.volume) > kCadVolumeTolerance * block.volume) {
+    const double l3 = std::pow(units.length_to_m, 3);
+    warnings.push_back({"cad_volume_mismatch",
+                        name + ": the CAD volume " + format(*block.cad_volume / l3) + " differs from the volume " +
+                            format(block.volume / l3) + " computed from its faces; the computed one is used",
+                        pointer + "/volume"});
+  }
+  if (block.cad_centroid &&
+      (*block.cad_centroid - block.centroid).norm() > std::max(kCadCentroidTolerance * diagonal, model_tolerance)) {
+    warnings.push_back({"cad_centroid_mismatch",
+                        name + ": the CAD centroid is " + length_text((*block.cad_centroid - block.centroid).norm(), units) +
+                            " from the centroid computed from its faces; the computed one is used",
+                        pointer + "/centroid"});
+  }
+}
+
+void prepare_given_interface(model::ContactInterface& contact, std::size_t index, const model::Model& m,
+                             double tolerance, std::vector<InputIssue>& errors) {
+  const std::string pointer = "/interfaces/" + std::to_string(index);
+  std::vector<int> all(contact.polygon.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  const FaceGeometry face = face_geometry(contact.polygon, all);
+  double size = 0.0;
+  for (const Vec3& p : contact.polygon) size = std::max(size, (p - contact.polygon[0]).norm());
+  if (face.area <= 1e-10 * size * size || size == 0.0) {
+    errors.push_back({pointer + "/polygon", "interface '" + contact.id + "' has a polygon of zero area"});
+    return;
+  }
+  if (face.max_plane_deviation > tolerance) {
+    errors.push_back({pointer + "/polygon", "interface '" + contact.id + "' is not planar: a corner is " +
+                                                length_text(face.max_plane_deviation, m.units) +
+                                                " from the polygon's plane"});
+    return;
+  }
+  contact.normal = face.normal;
+  // The schema says the normal points from blocks[0] into blocks[1].
+  const Vec3 a_to_b = m.blocks[contact.block_b].centroid - m.blocks[contact.block_a].centroid;
+  if (contact.normal.dot(a_to_b) < 0.0) contact.normal = -contact.normal;
+  local_frame(contact.normal, contact.tangent1, contact.tangent2);
+  contact.area = face.area;
+  contact.centroid = face.centroid;
+}
+
+}  // namespace
+
+PrepareReport prepare_model(model::Model& m) {
+  PrepareReport report;
+  const auto start = std::chrono::steady_clock::now();
+  const double tolerance = m.distance_tolerance();
+
+  std::vector<InputIssue> errors;
+  for (std::size_t i = 0; i < m.blocks.size(); ++i) {
+    prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings);
+  }
+  if (!errors.empty()) throw model::ModelError(errors);
+
+  // Loads given without a point act at the centroid, known only now.
+  for (auto* loads : {&m.dead_loads, &m.live_loads}) {
+    for (model::PointLoad& load : *loads) {
+      if (std::isnan(load.point.x())) load.point = m.blocks[load.block].centroid;
+    }
+  }
+
+  // Interfaces the CAD gave: frames from their polygons.
+  std::vector<model::ContactInterface> kept;
+  for (std::size_t i = 0; i < m.interfaces.size(); ++i) {
+    model::ContactInterface& contact = m.interfaces[i];
+    prepare_given_interface(contact, i, m, tolerance, errors);
+    if (m.blocks[contact.block_a].is_support() && m.blocks[contact.block_b].is_support()) {
+      m.warnings.push_back({"support_interface_ignored",
+                            "interface '" + contact.id + "' joins two supports; it carries no unknowns and is ignored",
+                            "/interfaces/" + std::to_string(i)});
+      continue;
+    }
+    kept.push_back(contact);
+  }
+  if (!errors.empty()) throw model::ModelError(errors);
+  m.interfaces = std::move(kept);
+  report.geometry_seconds = seconds_since(start);
+
+  const bool detect = m.detection.mode == model::DetectionMode::Merge ||
+                      (m.detection.mode == model::DetectionMode::Auto && m.interfaces.empty());
+  if (detect) {
+    const auto detect_start = std::chrono::steady_clock::now();
+    std::vector<std::pair<int, int>> covered;
+    for (const auto& contact : m.interfaces) {
+      covered.emplace_back(std::min(contact.block_a, contact.block_b), std::max(contact.block_a, contact.block_b));
+    }
+    std::vector<model::ContactInterface> found = detect_interfaces(m, tolerance, m.detection, covered, &report.detection);
+    std::set<std::string> used_ids;
+    for (const auto& contact : m.interfaces) used_ids.insert(contact.id);
+    std::size_t next = 0;
+    for (auto& contact : found) {
+      do {
+        contact.id = "I" + std::to_string(next++);
+      } while (used_ids.count(contact.id));
+      m.interfaces.push_back(std::move(contact));
+    }
+    report.detect_seconds = seconds_since(detect_start);
+    report.detection_ran = true;
+  }
+
+  // A free block that touches nothing can only fall; say so now rather than leave the user to
+  // puzzle over an infeasible analysis.
+  std::vector<int> contacts_per_block(m.blocks.size(), 0);
+  for (const auto& contact : m.interfaces) {
+    ++contacts_per_block[contact.block_a];
+    ++contacts_per_block[contact.block_b];
+  }
+  for (std::size_t i = 0; i < m.blocks.size(); ++i) {
+    if (!m.blocks[i].is_support() && contacts_per_block[i] == 0) {
+      m.warnings.push_back({"isolated_block", "block '" + m.blocks[i].id + "' touches no other block",
+                            "/blocks/" + std::to_string(i)});
+    }
+  }
+  const double diagonal = m.bounding_box().diagonal();
+  if (diagonal > 1e4) {
+    m.warnings.push_back({"suspicious_units", "the model is " + format(diagonal) +
+                                                  " m across: check /units/length", "/units/length"});
+  } else if (diagonal < 1e-2) {
+    m.warnings.push_back({"suspicious_units", "the model is only " + format(diagonal) +
+                                                  " m across: check /units/length", "/units/length"});
+  }
+  return report;
+}
+
+}  // namespace rbla::geometry

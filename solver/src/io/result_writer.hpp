@@ -1,0 +1,32 @@
+// Writing the result JSON (schema/result.schema.json). Converts back to the model's units.
+#pragma once
+
+#include "geometry/prepare_model.hpp"
+#include "model/model.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace rbla::io {
+
+/// Stage times of one run, in seconds; a stage that did not run stays 0.
+struct StageTimings {
+  double read_seconds = 0.0;
+  double validate_seconds = 0.0;
+  double geometry_seconds = 0.0;
+  double detect_seconds = 0.0;
+  double total_seconds = 0.0;
+};
+
+/// The `model_summary` section: counts, bounding box and total weight in the model's units.
+nlohmann::json model_summary_json(const model::Model& model);
+
+/// The `warnings` section.
+nlohmann::json warnings_json(const model::Model& model);
+
+/// A complete result for a run that stopped after the model stage (status `model_only`):
+/// no analysis, no numbers that were not computed.
+nlohmann::json model_only_result(const model::Model& model, const StageTimings& timings, const std::string& source);
+
+}  // namespace rbla::io

@@ -1,0 +1,77 @@
+#include "model/model.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace rbla::model {
+
+const char* to_string(BlockRole role) {
+  switch (role) {
+    case BlockRole::Free: return "free";
+    case BlockRole::Fixed: return "fixed";
+    case BlockRole::MovingSupport: return "moving_support";
+  }
+  return "?";
+}
+
+const char* to_string(AnalysisType value) {
+  switch (value) {
+    case AnalysisType::LoadMultiplier: return "load_multiplier";
+    case AnalysisType::Settlement: return "settlement";
+  }
+  return "?";
+}
+
+const char* to_string(FrictionModel value) {
+  switch (value) {
+    case FrictionModel::Associative: return "associative";
+    case FrictionModel::NonAssociative: return "non_associative";
+  }
+  return "?";
+}
+
+const char* to_string(ConeKind value) {
+  switch (value) {
+    case ConeKind::Exact: return "exact";
+    case ConeKind::PyramidInscribed: return "pyramid_inscribed";
+    case ConeKind::PyramidCircumscribed: return "pyramid_circumscribed";
+  }
+  return "?";
+}
+
+const char* to_string(Formulation value) {
+  switch (value) {
+    case Formulation::Auto: return "auto";
+    case Formulation::ThreeD: return "3d";
+    case Formulation::Planar: return "planar";
+  }
+  return "?";
+}
+
+BoundingBox Model::bounding_box() const {
+  BoundingBox box;
+  const double inf = std::numeric_limits<double>::infinity();
+  box.min = Vec3::Constant(inf);
+  box.max = Vec3::Constant(-inf);
+  for (const Block& block : blocks) {
+    for (const Vec3& v : block.vertices) {
+      box.min = box.min.cwiseMin(v);
+      box.max = box.max.cwiseMax(v);
+    }
+  }
+  if (blocks.empty()) box.min = box.max = Vec3::Zero();
+  return box;
+}
+
+std::size_t Model::num_contact_points() const {
+  std::size_t count = 0;
+  for (const ContactInterface& contact : interfaces) count += contact.polygon.size();
+  return count;
+}
+
+double Model::distance_tolerance() const {
+  if (detection.distance_tolerance) return *detection.distance_tolerance;
+  return detection.relative_tolerance * std::max(bounding_box().diagonal(), 1e-300);
+}
+
+}  // namespace rbla::model

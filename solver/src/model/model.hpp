@@ -1,0 +1,150 @@
+// Typed model of a masonry block structure. Nothing here knows about JSON: the io layer builds
+// these objects after validation, defaults and unit conversion, and everything downstream reads
+// only them.
+//
+// Internal units: metres and kilonewtons (unit weights kN/m^3). `Units` remembers what the file
+// used so results can be written back in the user's units.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace rbla::model {
+
+using Vec3 = Eigen::Vector3d;
+
+/// Scale factors from the file's units to the internal ones (m, kN, kN/m^3).
+struct Units {
+  std::string length_name = "m";
+  std::string force_name = "kN";
+  std::string unit_weight_name = "kN/m3";
+  double length_to_m = 1.0;            // metres per file length unit
+  double force_to_kN = 1.0;            // kilonewtons per file force unit
+  double unit_weight_to_kN_m3 = 1.0;   // (kN/m^3) per file unit-weight unit
+};
+
+enum class BlockRole { Free, Fixed, MovingSupport };
+const char* to_string(BlockRole role);
+
+struct Block {
+  std::string id;
+  std::string label;
+  BlockRole role = BlockRole::Free;
+  std::vector<Vec3> vertices;                // m
+  std::vector<std::vector<int>> faces;       // outward (counter-clockwise seen from outside)
+  double unit_weight = 0.0;                  // kN/m^3
+  // Computed from the faces by the divergence theorem (geometry/polyhedron.hpp).
+  double volume = 0.0;                       // m^3
+  Vec3 centroid = Vec3::Zero();              // m
+  // As the CAD reported them, when it did (m^3, m); kept for the comparison warning only.
+  std::optional<double> cad_volume;
+  std::optional<Vec3> cad_centroid;
+
+  double weight() const { return unit_weight * volume; }  // kN
+  bool is_support() const { return role != BlockRole::Free; }
+};
+
+/// A planar contact between two blocks. The unit normal points from block_a into block_b;
+/// (normal, tangent1, tangent2) is a right-handed frame: normal x tangent1 = tangent2.
+/// A contact force at a corner is f = N normal + T1 tangent1 + T2 tangent2 acting on block_b,
+/// and -f on block_a.
+struct ContactInterface {
+  std::string id;
+  std::string label;          // the CAD's own name, kept for the results
+  int block_a = -1;
+  int block_b = -1;
+  std::vector<Vec3> polygon;  // m, corners in order: the contact points
+  Vec3 normal = Vec3::UnitZ();
+  Vec3 tangent1 = Vec3::UnitX();
+  Vec3 tangent2 = Vec3::UnitY();
+  Vec3 centroid = Vec3::Zero();  // m, area centroid of the polygon
+  double area = 0.0;             // m^2
+  double friction = 0.0;         // Coulomb coefficient mu (dimensionless)
+  bool detected = false;         // true when found by interface detection, false when given
+};
+
+/// A force and a moment on a block (kN, kN m), the force applied at `point` (m).
+struct PointLoad {
+  int block = -1;
+  Vec3 force = Vec3::Zero();
+  Vec3 point = Vec3::Zero();
+  Vec3 moment = Vec3::Zero();
+};
+
+enum class AnalysisType { LoadMultiplier, Settlement };
+enum class FrictionModel { Associative, NonAssociative };
+enum class ConeKind { Exact, PyramidInscribed, PyramidCircumscribed };
+enum class Formulation { Auto, ThreeD, Planar };
+const char* to_string(AnalysisType value);
+const char* to_string(FrictionModel value);
+const char* to_string(ConeKind value);
+const char* to_string(Formulation value);
+
+struct AnalysisRequest {
+  AnalysisType type = AnalysisType::LoadMultiplier;
+  std::optional<Vec3> seismic_direction;    // unit, perpendicular to gravity
+  Vec3 settlement_direction = -Vec3::UnitZ();  // unit
+  FrictionModel friction_model = FrictionModel::Associative;
+  ConeKind cone = ConeKind::Exact;
+  int pyramid_faces = 8;
+  Formulation formulation = Formulation::Auto;
+  double tol_relative_gap = 1e-8;
+  double tol_feasibility = 1e-8;
+  int non_associative_max_iterations = 30;
+  double non_associative_tolerance = 1e-4;
+  double non_associative_damping = 0.5;
+  double time_limit_seconds = 0.0;  // 0: none
+};
+
+enum class DetectionMode { Auto, Off, Merge };
+
+struct DetectionSettings {
+  DetectionMode mode = DetectionMode::Auto;
+  double relative_tolerance = 1e-4;            // of the bounding-box diagonal
+  std::optional<double> distance_tolerance;    // m, overrides relative_tolerance
+  double angle_tolerance_degrees = 1.0;
+  double min_area_fraction = 1e-6;             // of the smaller face
+};
+
+struct BoundingBox {
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Zero();
+  double diagonal() const { return (max - min).norm(); }
+};
+
+/// Something the user should know that did not stop the run. `pointer` is a JSON pointer
+/// into the model file when the warning is about a place in it.
+struct Warning {
+  std::string code;
+  std::string message;
+  std::string pointer;
+};
+
+struct Model {
+  std::string title;
+  Units units;
+  Vec3 gravity = -Vec3::UnitZ();  // unit vector
+  std::string gravity_axis = "-z";
+  double default_friction = 0.6;
+  std::vector<Block> blocks;
+  std::vector<ContactInterface> interfaces;
+  std::vector<PointLoad> dead_loads;
+  std::vector<PointLoad> live_loads;
+  AnalysisRequest analysis;
+  bool analysis_given = false;
+  DetectionSettings detection;
+  std::unordered_map<std::string, int> block_index;  // id -> position in `blocks`
+  std::vector<Warning> warnings;
+
+  BoundingBox bounding_box() const;
+  std::size_t num_contact_points() const;
+  /// The distance tolerance in metres actually used for geometry checks and detection.
+  double distance_tolerance() const;
+};
+
+}  // namespace rbla::model

@@ -1,0 +1,57 @@
+// Small helpers that write model JSON for tests, as the CAD side would.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rbla::testing {
+
+using nlohmann::json;
+
+/// An axis-aligned box [x0,x1]x[y0,y1]x[z0,z1] with outward counter-clockwise faces.
+inline json box_block(const std::string& id, double x0, double y0, double z0, double x1, double y1, double z1,
+                      const std::string& role = "free") {
+  json vertices = json::array({{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0},
+                               {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}});
+  json faces = json::array({{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+  return json{{"id", id}, {"vertices", vertices}, {"faces", faces}, {"role", role}};
+}
+
+/// A right prism over a counter-clockwise polygon in the x-y plane, from z0 to z1.
+inline json prism_block(const std::string& id, const std::vector<std::pair<double, double>>& outline, double z0,
+                        double z1, const std::string& role = "free") {
+  const int n = static_cast<int>(outline.size());
+  json vertices = json::array();
+  for (const auto& [x, y] : outline) vertices.push_back({x, y, z0});
+  for (const auto& [x, y] : outline) vertices.push_back({x, y, z1});
+  json faces = json::array();
+  json bottom = json::array(), top = json::array();
+  for (int i = n - 1; i >= 0; --i) bottom.push_back(i);
+  for (int i = 0; i < n; ++i) top.push_back(n + i);
+  faces.push_back(bottom);
+  faces.push_back(top);
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    faces.push_back({i, j, n + j, n + i});
+  }
+  return json{{"id", id}, {"vertices", vertices}, {"faces", faces}, {"role", role}};
+}
+
+inline json model_with(json blocks, const std::string& length_unit = "m") {
+  return json{{"schema_version", "1.0.0"}, {"units", {{"length", length_unit}}}, {"blocks", std::move(blocks)}};
+}
+
+/// Multiplies every coordinate in a model by `factor` (for unit-invariance tests).
+inline json scaled(json model, double factor) {
+  for (auto& block : model["blocks"]) {
+    for (auto& v : block["vertices"]) {
+      for (auto& c : v) c = c.get<double>() * factor;
+    }
+  }
+  return model;
+}
+
+}  // namespace rbla::testing

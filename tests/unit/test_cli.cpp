@@ -1,0 +1,127 @@
+// The rbla command as a user runs it: exit codes, messages naming the field, no partial output.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;  // standard output and standard error together
+};
+
+RunResult run(const std::string& arguments) {
+  const std::string command = std::string(RBLA_BINARY) + " " + arguments + " 2>&1";
+  RunResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("rbla_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  static std::string box_model(const std::string& extra = "") {
+    return R"({"schema_version": "1.0.0", "units": {"length": "m"}, )" + extra + R"("blocks": [
+      {"id": "base", "role": "fixed",
+       "vertices": [[-1,-1,-1],[2,-1,-1],[2,2,-1],[-1,2,-1],[-1,-1,0],[2,-1,0],[2,2,0],[-1,2,0]],
+       "faces": [[0,3,2,1],[4,5,6,7],[0,1,5,4],[1,2,6,5],[2,3,7,6],[3,0,4,7]]},
+      {"id": "B1",
+       "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0],[0,0,2],[1,0,2],[1,1,2],[0,1,2]],
+       "faces": [[0,3,2,1],[4,5,6,7],[0,1,5,4],[1,2,6,5],[2,3,7,6],[3,0,4,7]]}]})";
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(Cli, ValidateAcceptsAGoodModel) {
+  const auto r = run("validate " + write("m.json", box_model()));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("valid: 2 blocks, 1 interfaces, 4 contact points"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, InfoWritesAModelOnlyResult) {
+  const auto r = run("info " + write("m.json", box_model()) + " -o " + path("info.json"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("contact points:  4"), std::string::npos) << r.output;
+  std::ifstream in(path("info.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("\"status\": \"model_only\""), std::string::npos) << text.str();
+}
+
+TEST_F(Cli, InvalidInputExitsWithTwoAndNamesThePointer) {
+  std::string bad = box_model();
+  bad.replace(bad.find("\"m\""), 3, "\"inch\"");
+  const auto r = run("validate " + write("bad.json", bad));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("/units/length"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, MalformedJsonExitsWithTwo) {
+  const auto r = run("validate " + write("bad.json", "{\"blocks\": [1, 2"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("malformed JSON"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, MissingFileExitsWithTwo) {
+  const auto r = run("validate " + path("does_not_exist.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot open"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, UsageErrorExitsWithOne) {
+  EXPECT_EQ(run("frobnicate").exit_code, 1);
+  EXPECT_EQ(run("solve").exit_code, 1);
+  EXPECT_EQ(run("validate --no-such-flag x.json").exit_code, 1);
+}
+
+TEST_F(Cli, InvalidInputWritesNoOutputFile) {
+  const auto r = run("info " + write("bad.json", "{}") + " -o " + path("out.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_FALSE(fs::exists(path("out.json")));
+}
+
+TEST_F(Cli, UnwritableOutputExitsWithFourAndLeavesNothing) {
+  const auto r = run("info " + write("m.json", box_model()) + " -o " + path("no_such_dir/out.json"));
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
+}
+
+TEST_F(Cli, ReadsStandardInput) {
+  const auto r = run("validate - < " + write("m.json", box_model()));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}

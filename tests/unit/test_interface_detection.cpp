@@ -1,0 +1,206 @@
+// Interface detection against hand-computed contact polygons.
+#include "geometry/interface_detection.hpp"
+#include "io/load_model.hpp"
+#include "support/model_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace rbla::testing;
+using rbla::io::load_model_text;
+using rbla::model::ContactInterface;
+using rbla::model::Model;
+using rbla::model::Vec3;
+
+namespace {
+
+Model load(const json& model) { return load_model_text(model.dump()).model; }
+
+double total_area(const Model& m) {
+  double area = 0.0;
+  for (const auto& c : m.interfaces) area += c.area;
+  return area;
+}
+
+/// Contact points of all interfaces, sorted, for comparisons that ignore order.
+std::vector<std::array<double, 3>> sorted_points(const Model& m, double scale = 1.0) {
+  std::vector<std::array<double, 3>> points;
+  for (const auto& c : m.interfaces) {
+    for (const auto& p : c.polygon) points.push_back({p.x() * scale, p.y() * scale, p.z() * scale});
+  }
+  for (auto& p : points) {
+    for (double& x : p) x = std::round(x * 1e9) / 1e9;
+  }
+  std::sort(points.begin(), points.end());
+  return points;
+}
+
+}  // namespace
+
+TEST(LocalFrame, RightHandedAndAxisAligned) {
+  for (const Vec3& n : {Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(1, 2, 3).normalized()}) {
+    Vec3 t1, t2;
+    rbla::geometry::local_frame(n, t1, t2);
+    EXPECT_NEAR(t1.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(t1.dot(n), 0.0, 1e-15);
+    EXPECT_NEAR((n.cross(t1) - t2).norm(), 0.0, 1e-15);
+  }
+  Vec3 t1, t2;
+  rbla::geometry::local_frame(Vec3::UnitZ(), t1, t2);
+  EXPECT_EQ(t1, Vec3::UnitX());
+  EXPECT_EQ(t2, Vec3::UnitY());
+}
+
+TEST(InterfaceDetection, StackedBoxes) {
+  const Model m = load(model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"),
+                                               box_block("B1", 0, 0, 0, 1, 1, 1), box_block("B2", 0, 0, 1, 1, 1, 2)})));
+  ASSERT_EQ(m.interfaces.size(), 2u);
+  for (const ContactInterface& c : m.interfaces) {
+    EXPECT_EQ(c.polygon.size(), 4u);
+    EXPECT_NEAR(c.area, 1.0, 1e-12);
+    EXPECT_TRUE(c.detected);
+    // The normal points from block_a into block_b.
+    EXPECT_GT(c.normal.dot(m.blocks[c.block_b].centroid - m.blocks[c.block_a].centroid), 0.0);
+    EXPECT_NEAR(std::abs(c.normal.z()), 1.0, 1e-12);
+    EXPECT_NEAR((c.centroid - Vec3(0.5, 0.5, c.centroid.z())).norm(), 0.0, 1e-12);
+    EXPECT_DOUBLE_EQ(c.friction, 0.6);
+  }
+}
+
+TEST(InterfaceDetection, RunningBondOverlap) {
+  // One block resting on two half-offset blocks: two interfaces of area 0.5 each, plus the head
+  // joint between the two lower blocks and their two base contacts.
+  const Model m = load(model_with(json::array({box_block("base", -1, -1, -1, 3, 2, 0, "fixed"),
+                                               box_block("L", 0, 0, 0, 1, 1, 1), box_block("R", 1, 0, 0, 2, 1, 1),
+                                               box_block("T", 0.5, 0, 1, 1.5, 1, 2)})));
+  ASSERT_EQ(m.interfaces.size(), 5u);
+  int bed_joints_on_top = 0;
+  for (const auto& c : m.interfaces) {
+    const bool touches_top = m.blocks[c.block_a].id == "T" || m.blocks[c.block_b].id == "T";
+    if (touches_top) {
+      ++bed_joints_on_top;
+      EXPECT_NEAR(c.area, 0.5, 1e-12);
+      EXPECT_EQ(c.polygon.size(), 4u);
+    }
+  }
+  EXPECT_EQ(bed_joints_on_top, 2);
+  EXPECT_NEAR(total_area(m), 0.5 + 0.5 + 1.0 + 1.0 + 1.0, 1e-12);
+  EXPECT_EQ(m.num_contact_points(), 20u);
+}
+
+TEST(InterfaceDetection, LShapedFaceOnTwoBlocksGivesClippedPolygons) {
+  // An L-shaped prism (outline [0,2]x[0,1] + [0,1]x[1,2]) rests on a 2x2 block: the contact is
+  // the L itself (area 3, 6 corners).
+  const Model m = load(model_with(json::array(
+      {box_block("base", 0, 0, -1, 2, 2, 0, "fixed"),
+       prism_block("L", {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, 0, 1)})));
+  ASSERT_EQ(m.interfaces.size(), 1u);
+  EXPECT_NEAR(m.interfaces[0].area, 3.0, 1e-12);
+  EXPECT_EQ(m.interfaces[0].polygon.size(), 6u);
+}
+
+TEST(InterfaceDetection, UShapedFaceOverBarGivesTwoInterfaces) {
+  // A U outline over a bar crossing both arms: two separate contact components for one pair.
+  const Model m = load(model_with(json::array(
+      {box_block("bar", -1, 0.5, -1, 4, 1.0, 0, "fixed"),
+       prism_block("U", {{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 0.25}, {1, 0.25}, {1, 2}, {0, 2}}, 0, 1)})));
+  ASSERT_EQ(m.interfaces.size(), 2u);
+  EXPECT_NEAR(m.interfaces[0].area, 0.5, 1e-12);
+  EXPECT_NEAR(m.interfaces[1].area, 0.5, 1e-12);
+}
+
+TEST(InterfaceDetection, NearlyCoplanarInsideAndOutsideTolerance) {
+  // Default tolerance: 1e-4 of the bounding-box diagonal (about 3.3 m here, so 3.3e-4 m).
+  for (const auto& [gap, expected] : {std::pair{1e-5, 1u}, std::pair{2e-4, 1u}, std::pair{1e-3, 0u}, std::pair{1e-2, 0u}}) {
+    const Model m = load(model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"),
+                                                 box_block("B1", 0, 0, gap, 1, 1, 2)})));
+    EXPECT_EQ(m.interfaces.size(), expected) << "gap " << gap;
+  }
+}
+
+TEST(InterfaceDetection, ExplicitDistanceToleranceOverridesRelative) {
+  json model = model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"),
+                                       box_block("B1", 0, 0, 0.01, 1, 1, 2)}));
+  model["detection"] = {{"distance_tolerance", 0.02}};
+  EXPECT_EQ(load(model).interfaces.size(), 1u);
+}
+
+TEST(InterfaceDetection, SlightlyTiltedFaceWithinAngleTolerance) {
+  json model = model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"), box_block("B1", 0, 0, 0, 1, 1, 2)}));
+  // Lift one bottom corner by 1e-5 m: a tilt of about 0.0008 degrees.
+  model["blocks"][1]["vertices"][2][2] = 1e-5;
+  // The bottom face is then not exactly planar: warn, still detect.
+  const Model m = load(model);
+  EXPECT_EQ(m.interfaces.size(), 1u);
+}
+
+TEST(InterfaceDetection, MillimetresAndMetresGiveTheSameContactPoints) {
+  const json metres = model_with(json::array({box_block("base", -1, -1, -1, 3, 2, 0, "fixed"), box_block("L", 0, 0, 0, 1, 1, 1),
+                                              box_block("R", 1, 0, 0, 2, 1, 1), box_block("T", 0.5, 0, 1, 1.5, 1, 2)}));
+  json millimetres = scaled(metres, 1000.0);
+  millimetres["units"]["length"] = "mm";
+  const Model a = load(metres);
+  const Model b = load(millimetres);
+  ASSERT_EQ(a.interfaces.size(), b.interfaces.size());
+  EXPECT_EQ(sorted_points(a), sorted_points(b));  // both internally in metres
+}
+
+TEST(InterfaceDetection, SupportPairsAreSkipped) {
+  const Model m = load(model_with(json::array({box_block("ground", -1, -1, -1, 0, 1, 0, "fixed"),
+                                               box_block("settling", 0, -1, -1, 1, 1, 0, "moving_support"),
+                                               box_block("B", -0.5, 0, 0, 0.5, 1, 1)})));
+  ASSERT_EQ(m.interfaces.size(), 2u);  // B on each support; ground-settling not an interface
+  for (const auto& c : m.interfaces) {
+    EXPECT_TRUE(m.blocks[c.block_a].id == "B" || m.blocks[c.block_b].id == "B");
+    EXPECT_NEAR(c.area, 0.5, 1e-12);
+  }
+}
+
+TEST(InterfaceDetection, EdgeAndCornerTouchingAreNotInterfaces) {
+  const Model m = load(model_with(json::array({box_block("base", -1, -1, -0.5, 3, 3, 0, "fixed"), box_block("A", 0, 0, 0, 1, 1, 1),
+                                               box_block("diagonal", 1, 1, 0, 2, 2, 1)})));
+  EXPECT_EQ(m.interfaces.size(), 2u);  // each on the base; A and diagonal share only an edge
+}
+
+TEST(InterfaceDetection, GivenInterfacesKeepTheirLabels) {
+  json model = model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"), box_block("B1", 0, 0, 0, 1, 1, 2),
+                                       box_block("B2", 0, 0, 2, 1, 1, 3)}));
+  model["interfaces"] = {{{"id", "joint-1"},
+                          {"label", "bed joint north"},
+                          {"blocks", {"B1", "base"}},
+                          {"friction", 0.4},
+                          {"polygon", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}}}};
+  {
+    const Model m = load(model);  // interfaces given: detection off by default
+    ASSERT_EQ(m.interfaces.size(), 1u);
+    const auto& c = m.interfaces[0];
+    EXPECT_EQ(c.id, "joint-1");
+    EXPECT_EQ(c.label, "bed joint north");
+    EXPECT_DOUBLE_EQ(c.friction, 0.4);
+    EXPECT_FALSE(c.detected);
+    EXPECT_NEAR((c.normal - Vec3(0, 0, -1)).norm(), 0.0, 1e-12);  // from B1 (above) into base
+  }
+  model["detection"] = {{"mode", "merge"}};
+  const Model merged = load(model);
+  ASSERT_EQ(merged.interfaces.size(), 2u);  // B1-B2 added; base-B1 kept as labelled
+  EXPECT_EQ(merged.interfaces[0].label, "bed joint north");
+  EXPECT_TRUE(merged.interfaces[1].detected);
+}
+
+TEST(InterfaceDetection, BroadPhaseDoesNotTestAllPairs) {
+  // A 20 x 10 grid of blocks: candidate pairs grow with contacts, not with N^2.
+  json blocks = json::array({box_block("base", -1, -1, -1, 21, 2, 0, "fixed")});
+  for (int row = 0; row < 10; ++row) {
+    for (int col = 0; col < 20; ++col) {
+      const double shift = (row % 2) * 0.5;
+      blocks.push_back(box_block("b" + std::to_string(row) + "_" + std::to_string(col), col + shift, 0, row,
+                                 col + shift + 1, 1, row + 1));
+    }
+  }
+  const auto loaded = load_model_text(model_with(blocks).dump());
+  const std::size_t n = loaded.model.blocks.size();
+  EXPECT_LT(loaded.prepare.detection.candidate_block_pairs, n * 10);
+  EXPECT_GT(loaded.model.interfaces.size(), 0u);
+}
