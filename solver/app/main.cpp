@@ -6,16 +6,18 @@
 //   2  invalid input (the message names the JSON pointer and what was expected)
 //   3  solver failure (numerical failure, time or iteration limit)
 //   4  the output could not be written
-//   5  the requested analysis is not available in this build
+#include "analysis/limit_analysis.hpp"
 #include "io/atomic_file.hpp"
 #include "io/load_model.hpp"
 #include "io/model_reader.hpp"
 #include "io/result_writer.hpp"
+#include "io/svg_writer.hpp"
 #include "model/errors.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -28,14 +30,15 @@ enum ExitCode : int {
   kInvalidInput = 2,
   kSolverFailure = 3,
   kOutputError = 4,
-  kNotAvailable = 5,
 };
 
 struct CommonOptions {
   std::string model_path;
   std::string output_path;
   std::string svg_dir;
+  std::string dump_problem_path;
   bool quiet = false;
+  bool verbose = false;
 };
 
 void progress(const CommonOptions& options, const std::string& line) {
@@ -141,14 +144,68 @@ int run_info(const CommonOptions& options) {
 }
 
 int run_solve(const CommonOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
   rbla::io::LoadedModel loaded;
   int exit_code = kSuccess;
   if (!load(options, loaded, exit_code)) return exit_code;
-  // The limit analysis (equilibrium assembly, conic solve, mechanism) is not part of this build
-  // yet. Say so plainly rather than write a result that was not computed.
-  std::cerr << "rbla: the model is valid, but the limit analysis is not available in this build yet; "
-               "no result was written. Use `rbla info MODEL -o FILE` for the model summary.\n";
-  return kNotAvailable;
+  const rbla::model::Model& m = loaded.model;
+
+  rbla::analysis::AnalysisOptions analysis_options;
+  analysis_options.log = options.verbose ? &std::cerr : nullptr;
+  analysis_options.dump_problem_path = options.dump_problem_path;
+  progress(options, std::string("analysis: ") + rbla::model::to_string(m.analysis.type) + ", " +
+                        rbla::model::to_string(m.analysis.friction_model) + " friction, cone " +
+                        rbla::model::to_string(m.analysis.cone));
+  rbla::analysis::AnalysisResult result;
+  try {
+    result = rbla::analysis::analyse(m, analysis_options);
+  } catch (const rbla::model::ModelError& error) {
+    return report_invalid(error);
+  } catch (const rbla::conic::ConicSetupError& error) {
+    std::cerr << "rbla: the conic problem could not be set up: " << error.what() << "\n";
+    return kSolverFailure;
+  }
+  for (const auto& warning : result.warnings) {
+    if (!options.quiet) std::cerr << "rbla: warning [" << warning.code << "]: " << warning.message << "\n";
+  }
+  progress(options, "solved in " + seconds_text(result.solve_seconds) + " (" +
+                        std::to_string(result.solver_info.iterations) + " interior-point iterations" +
+                        (result.non_associative.empty()
+                             ? std::string()
+                             : ", " + std::to_string(result.non_associative.size()) + " non-associative steps") +
+                        "; assembly " + seconds_text(result.assemble_seconds) + ")");
+  std::cout << result.verdict_text << "\n";
+
+  rbla::io::StageTimings timings = loaded.timings;
+  const auto write_start = std::chrono::steady_clock::now();
+  if (!options.svg_dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(options.svg_dir, error);
+    const std::filesystem::path dir(options.svg_dir);
+    const int svg_code = write_output((dir / "mechanism.svg").string(), rbla::io::mechanism_svg(m, result));
+    if (svg_code != kSuccess) return svg_code;
+    const int plot_code = write_output((dir / "convergence.svg").string(), rbla::io::convergence_svg(result));
+    if (plot_code != kSuccess) return plot_code;
+    progress(options, "wrote " + (dir / "mechanism.svg").string() + " and " + (dir / "convergence.svg").string());
+  }
+  if (!options.output_path.empty()) {
+    timings.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
+    timings.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const nlohmann::json json = rbla::io::analysis_result_json(m, result, timings, options.model_path);
+    const int code = write_output(options.output_path, json.dump(1) + "\n");
+    if (code != kSuccess) return code;
+    if (options.output_path != "-") progress(options, "wrote " + options.output_path);
+  }
+  switch (result.verdict) {
+    case rbla::analysis::Verdict::Collapse:
+    case rbla::analysis::Verdict::NoMechanism:
+    case rbla::analysis::Verdict::CannotStand: return kSuccess;
+    case rbla::analysis::Verdict::SolverFailure:
+    case rbla::analysis::Verdict::TimeLimit:
+    case rbla::analysis::Verdict::IterationLimit:
+    case rbla::analysis::Verdict::Cancelled: return kSolverFailure;
+  }
+  return kSolverFailure;
 }
 
 }  // namespace
@@ -163,7 +220,10 @@ int main(int argc, char** argv) {
   solve->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
   solve->add_option("-o,--output", options.output_path, "Result JSON file ('-' for standard output)");
   solve->add_option("--svg", options.svg_dir, "Folder for the mechanism and convergence SVG pictures");
+  solve->add_option("--dump-problem", options.dump_problem_path,
+                    "Write the conic problem for other solvers: CBF, or free MPS when the name ends in .mps (LP only)");
   solve->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+  solve->add_flag("-v,--verbose", options.verbose, "Interior-point iteration log on standard error");
 
   CLI::App* validate = app.add_subcommand("validate", "Check a model against the schema and its geometry");
   validate->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();

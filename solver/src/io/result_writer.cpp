@@ -69,3 +69,177 @@ json model_only_result(const model::Model& model, const StageTimings& timings, c
 }
 
 }  // namespace rbla::io
+
+namespace rbla::io {
+
+namespace {
+
+const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
+
+/// Numbers the solver reports as -1e-13 for a force that is zero: the schema says >= 0.
+double non_negative(double value) { return value < 0.0 ? 0.0 : value; }
+
+json timings_json(const StageTimings& timings, const analysis::AnalysisResult& result) {
+  return json{{"read_seconds", timings.read_seconds},       {"validate_seconds", timings.validate_seconds},
+              {"geometry_seconds", timings.geometry_seconds}, {"detect_seconds", timings.detect_seconds},
+              {"assemble_seconds", result.assemble_seconds},  {"solve_seconds", result.solve_seconds},
+              {"mechanism_seconds", result.mechanism_seconds}, {"write_seconds", timings.write_seconds},
+              {"total_seconds", timings.total_seconds}};
+}
+
+}  // namespace
+
+json analysis_result_json(const model::Model& model, const analysis::AnalysisResult& result,
+                          const StageTimings& timings, const std::string& source) {
+  using analysis::Verdict;
+  const double l = model.units.length_to_m;
+  const double f = model.units.force_to_kN;
+  json out = model_only_result(model, timings, source);
+  out["status"] = analysis::to_string(result.verdict);
+  out["verdict"] = result.verdict_text;
+  out["timings"] = timings_json(timings, result);
+
+  json analysis{{"type", model::to_string(result.type)},
+                {"friction_model", model::to_string(result.friction_model)},
+                {"cone", model::to_string(result.cone)},
+                {"formulation", result.planar ? "planar" : "3d"}};
+  if (result.cone != model::ConeKind::Exact) analysis["pyramid_faces"] = result.pyramid_faces;
+  if (result.planar) analysis["planar_axis"] = axis_name(result.planar_axis);
+  out["analysis"] = analysis;
+
+  const conic::Info& info = result.solver_info;
+  out["solver"] = {{"name", "rbla conic interior point (" + info.backend + ")"},
+                   {"version", RBLA_VERSION},
+                   {"status", conic::to_string(info.status)},
+                   {"iterations", info.iterations},
+                   {"primal_objective", info.primal_objective},
+                   {"dual_objective", info.dual_objective},
+                   {"num_variables", result.size.num_variables},
+                   {"num_equality_rows", result.size.num_equality_rows},
+                   {"num_cones", result.size.num_cones},
+                   {"num_nonzeros", result.size.num_nonzeros}};
+
+  json ipm = json::array();
+  for (const auto& row : result.interior_point_history) {
+    ipm.push_back({{"iteration", row.iteration},
+                   {"primal_objective", row.primal_objective},
+                   {"dual_objective", row.dual_objective},
+                   {"relative_gap", row.gap_rel},
+                   {"primal_residual", row.res_primal},
+                   {"dual_residual", row.res_dual},
+                   {"step", row.step},
+                   {"mu", row.mu}});
+  }
+  json convergence{{"interior_point", ipm}};
+  if (result.friction_model == model::FrictionModel::NonAssociative) {
+    json steps = json::array();
+    const double value_unit = result.type == model::AnalysisType::Settlement ? f : 1.0;
+    for (const auto& step : result.non_associative) {
+      steps.push_back({{"iteration", step.iteration},
+                       {"load_multiplier", non_negative(step.value / value_unit)},
+                       {"max_normal_force_change", step.max_normal_force_change / f},
+                       {"interior_point_iterations", step.interior_point_iterations}});
+    }
+    convergence["non_associative"] = steps;
+    convergence["non_associative_converged"] = result.non_associative_converged;
+  }
+  out["convergence"] = convergence;
+
+  if (result.load_multiplier) out["load_multiplier"] = non_negative(*result.load_multiplier);
+  if (result.base_reaction) {
+    json moving = json::array();
+    for (const auto& block : model.blocks) {
+      if (block.role == model::BlockRole::MovingSupport) moving.push_back(block.id);
+    }
+    const model::Vec3& d = result.settlement_direction;
+    out["base_reaction"] = {{"at_collapse", non_negative(*result.base_reaction / f)},
+                            {"direction", {d.x(), d.y(), d.z()}},
+                            {"moving_blocks", moving}};
+  }
+
+  const bool has_mechanism = result.verdict == Verdict::Collapse || result.verdict == Verdict::CannotStand;
+  if (has_mechanism && !result.mechanism.blocks.empty()) {
+    const bool settlement = result.mechanism.normalisation == analysis::Normalisation::UnitSettlement;
+    const model::BoundingBox box = model.bounding_box();
+    // Drawn at 5 % of the model's size for the largest vertex displacement (which is 1 unit).
+    double largest = 0.0;
+    for (const auto& block : result.mechanism.blocks) {
+      if (block.moving) largest = std::max(largest, block.translation.norm() / l);
+    }
+    const double scale = 0.05 * box.diagonal() / l / std::max(largest, 1.0);
+    out["mechanism"] = {{"normalisation", settlement ? "unit_settlement" : "max_translation"},
+                        {"scale_note", settlement ? "the moving supports settle by 1 length unit"
+                                                  : "the largest vertex displacement of a free block is 1 length unit"},
+                        {"displacement_scale", scale}};
+    json blocks = json::array();
+    for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+      const auto& motion = result.mechanism.blocks[b];
+      const model::Vec3 t = motion.translation / l;
+      json entry{{"id", model.blocks[b].id},
+                 {"role", model::to_string(model.blocks[b].role)},
+                 {"translation", {t.x(), t.y(), t.z()}},
+                 {"rotation", {motion.rotation.x(), motion.rotation.y(), motion.rotation.z()}}};
+      if (result.verdict == Verdict::CannotStand) entry["falling"] = motion.moving;
+      blocks.push_back(std::move(entry));
+    }
+    out["blocks"] = blocks;
+
+    json interfaces = json::array();
+    json cracked = json::array();
+    const bool forces_known = result.verdict == Verdict::Collapse;
+    for (std::size_t i = 0; i < model.interfaces.size(); ++i) {
+      const model::ContactInterface& c = model.interfaces[i];
+      const analysis::InterfaceResult& r = result.mechanism.interfaces[i];
+      json entry{{"id", c.id},
+                 {"blocks", {model.blocks[c.block_a].id, model.blocks[c.block_b].id}},
+                 {"normal", {c.normal.x(), c.normal.y(), c.normal.z()}},
+                 {"tangents", {{c.tangent1.x(), c.tangent1.y(), c.tangent1.z()}, {c.tangent2.x(), c.tangent2.y(), c.tangent2.z()}}},
+                 {"area", c.area / (l * l)},
+                 {"state", analysis::to_string(r.state)},
+                 {"cracked", r.cracked}};
+      if (!c.label.empty()) entry["label"] = c.label;
+      if (forces_known) entry["resultant"] = {{"normal_force", r.normal_force / f}, {"shear_force", r.shear_force / f}};
+      json points = json::array();
+      for (const auto& p : r.points) {
+        json point{{"position", {p.position.x() / l, p.position.y() / l, p.position.z() / l}},
+                   {"relative_velocity", {p.relative_velocity.x() / l, p.relative_velocity.y() / l, p.relative_velocity.z() / l}},
+                   {"state", analysis::to_string(p.state)}};
+        if (forces_known) {
+          point["normal_force"] = non_negative(p.normal_force / f);
+          point["shear_force"] = {p.shear1 / f, p.shear2 / f};
+        }
+        points.push_back(std::move(point));
+      }
+      entry["points"] = points;
+      interfaces.push_back(std::move(entry));
+      if (r.cracked) cracked.push_back(c.id);
+    }
+    out["interfaces"] = interfaces;
+    out["cracked_interfaces"] = cracked;
+  }
+
+  if (result.verdict == Verdict::Collapse) {
+    const bool settlement = result.type == model::AnalysisType::Settlement;
+    const double work_unit = f * l;  // kN m per (user force x user length)
+    out["work_balance"] = {{"external_work_live", result.work.live_work / work_unit},
+                           {"external_work_dead", result.work.dead_work / work_unit},
+                           {"dissipation", result.work.dissipation / work_unit},
+                           {"kinematic_value", settlement ? result.work.kinematic_value / f : result.work.kinematic_value},
+                           {"relative_error", result.work.relative_error}};
+    out["accuracy"] = {{"relative_gap", result.accuracy.relative_gap},
+                       {"primal_residual", result.accuracy.primal_residual},
+                       {"dual_residual", result.accuracy.dual_residual},
+                       {"equilibrium_residual", result.accuracy.equilibrium_residual / f}};
+  }
+
+  json warnings = warnings_json(model);
+  for (const auto& warning : result.warnings) {
+    json entry{{"code", warning.code}, {"message", warning.message}};
+    if (!warning.pointer.empty()) entry["pointer"] = warning.pointer;
+    warnings.push_back(std::move(entry));
+  }
+  out["warnings"] = warnings;
+  return out;
+}
+
+}  // namespace rbla::io

@@ -1,6 +1,7 @@
 // Writing the result JSON (schema/result.schema.json). Converts back to the model's units.
 #pragma once
 
+#include "analysis/analysis_result.hpp"
 #include "geometry/prepare_model.hpp"
 #include "model/model.hpp"
 
@@ -16,6 +17,7 @@ struct StageTimings {
   double validate_seconds = 0.0;
   double geometry_seconds = 0.0;
   double detect_seconds = 0.0;
+  double write_seconds = 0.0;
   double total_seconds = 0.0;
 };
 
@@ -28,5 +30,9 @@ nlohmann::json warnings_json(const model::Model& model);
 /// A complete result for a run that stopped after the model stage (status `model_only`):
 /// no analysis, no numbers that were not computed.
 nlohmann::json model_only_result(const model::Model& model, const StageTimings& timings, const std::string& source);
+
+/// A complete result of an analysis, in the model's units (lengths, forces; rotations in rad).
+nlohmann::json analysis_result_json(const model::Model& model, const analysis::AnalysisResult& result,
+                                    const StageTimings& timings, const std::string& source);
 
 }  // namespace rbla::io

@@ -1,0 +1,47 @@
+// rbla_conic_cbf_solve: solves a CBF file (the subset rbla::conic::write_cbf writes) and prints
+// one JSON object with the outcome. Used by tests/crosscheck/crosscheck_cvxopt.py.
+//   rbla_conic_cbf_solve problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]
+
+#include "rbla/conic/io.hpp"
+#include "rbla/conic/solver.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]\n", argv[0]);
+    return 2;
+  }
+  rbla::conic::Settings settings;
+  for (int k = 2; k < argc; ++k) {
+    if (std::strcmp(argv[k], "--verbose") == 0) {
+      settings.verbose = true;
+      settings.log_stream = &std::cerr;
+    } else if (std::strcmp(argv[k], "--no-equilibrate") == 0) {
+      settings.equilibrate = false;
+    } else if (std::strcmp(argv[k], "--no-dense-columns") == 0) {
+      settings.dense_columns = false;
+    } else {
+      std::fprintf(stderr, "unknown option %s\n", argv[k]);
+      return 2;
+    }
+  }
+  try {
+    const rbla::conic::ConicProblem problem = rbla::conic::read_cbf_file(argv[1]);
+    const rbla::conic::Solution solution = rbla::conic::solve(problem, settings);
+    const auto& info = solution.info;
+    std::printf(
+        "{\"status\": \"%s\", \"primal_objective\": %.17g, \"dual_objective\": %.17g, "
+        "\"iterations\": %d, \"res_primal\": %.3e, \"res_dual\": %.3e, \"gap_rel\": %.3e, "
+        "\"total_seconds\": %.6f}\n",
+        rbla::conic::to_string(info.status), info.primal_objective, info.dual_objective,
+        info.iterations, info.res_primal, info.res_dual, info.gap_rel, info.total_seconds);
+    return 0;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "error: %s\n", error.what());
+    return 1;
+  }
+}

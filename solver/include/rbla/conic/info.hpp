@@ -1,0 +1,80 @@
+#pragma once
+// Solve outcome: status, summary numbers mirroring the log columns, per-phase timings and the
+// per-iteration history (for convergence plots).
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace rbla::conic {
+
+enum class SolveStatus {
+  Solved,            ///< all tolerances met; x, y, z are the primal/dual solution
+  SolvedInaccurate,  ///< stopped early, but the reduced tolerances are met
+  PrimalInfeasible,  ///< y is a certificate: bᵀy = 1, z = −Aᵀy ∈ K* (up to tol_infeas); x is NaN
+  DualInfeasible,    ///< x is a certificate: cᵀx = −1, x ∈ K, A x ≈ 0 (primal unbounded); y, z NaN
+  IterationLimit,    ///< max_iter reached; x, y, z are the last iterate
+  TimeLimit,         ///< time_limit_seconds reached; last iterate
+  NumericalFailure,  ///< factorisation failed after all retries, or the steps stalled
+  Cancelled,         ///< the progress callback returned false
+};
+const char* to_string(SolveStatus status);
+/// True for Solved and SolvedInaccurate.
+bool has_solution(SolveStatus status);
+
+/// One row of the iteration log (also passed to the progress callback).
+struct IterationRow {
+  int iteration = 0;
+  double primal_objective = 0;  ///< cᵀx, x = x̂/τ, original units
+  double dual_objective = 0;    ///< bᵀy
+  double gap_rel = 0;           ///< see Settings::tol_gap_rel
+  double res_primal = 0;        ///< see Settings::tol_feas
+  double res_dual = 0;
+  double mu = 0;                ///< complementarity (x̂ᵀẑ + τκ)/(ν+1), scaled problem
+  double tau = 0;               ///< homogeneous embedding variables
+  double kappa = 0;
+  double step = 0;              ///< step length that produced this iterate (0 at iteration 0)
+  double sigma = 0;             ///< centring parameter of that step
+  int refine_steps = 0;         ///< iterative-refinement steps in the solves of that step
+  double elapsed_seconds = 0;   ///< since the start of solve()
+};
+
+struct Info {
+  SolveStatus status = SolveStatus::NumericalFailure;
+  int iterations = 0;
+  double primal_objective = 0;
+  double dual_objective = 0;
+  double gap_abs = 0;
+  double gap_rel = 0;
+  double res_primal = 0;
+  double res_dual = 0;
+  double certificate_residual = 0;  ///< ‖Aᵀȳ + z̄‖∞ or ‖A x̄‖∞ when infeasible, else 0
+  double step = 0;                  ///< last step length
+
+  double setup_seconds = 0;      ///< construction: validation, equilibration, pattern (incl. symbolic)
+  double symbolic_seconds = 0;   ///< CHOLMOD analyse (part of setup)
+  double assembly_seconds = 0;   ///< filling M's values, summed over iterations
+  double factor_seconds = 0;     ///< CHOLMOD numeric factorisations incl. retries and dense-column Schur
+  double solve_seconds = 0;      ///< triangular solves incl. refinement
+  double total_seconds = 0;      ///< solve() wall time (excludes setup)
+
+  int num_refactor_retries = 0;  ///< factorisations repeated with larger regularisation
+  int num_dense_columns = 0;     ///< columns handled outside the sparse factor
+  long num_factor_nonzeros = 0;  ///< nnz(L)
+  std::string backend;           ///< e.g. "CHOLMOD supernodal LL' (AMD)"
+  std::vector<IterationRow> history;
+
+  /// One line: status, iterations, objective, gap, time.
+  std::string brief_report() const;
+};
+
+/// Solution in the original variables. Which vectors hold what depends on status (see SolveStatus).
+struct Solution {
+  Eigen::VectorXd x;  ///< primal, length n
+  Eigen::VectorXd y;  ///< equality multipliers, length m
+  Eigen::VectorXd z;  ///< dual slack c − Aᵀy, length n
+  Info info;
+};
+
+}  // namespace rbla::conic

@@ -1,0 +1,90 @@
+#pragma once
+// Solver settings: a plain struct, the default at each field, the criterion and unit in the
+// comment (Clarabel / OSQP style). Stopping criteria are stated once, at Settings::tol_*.
+
+#include <limits>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace rbla::conic {
+
+/// Fill-reducing ordering used by CHOLMOD for the normal matrix (symbolic analysis, once).
+enum class Ordering { Amd, Metis, CholmodDefault };
+const char* to_string(Ordering ordering);
+
+struct Settings {
+  // ---- Termination (all measured on the original, unscaled problem; x, y, z = iterate / τ) ----
+  // Solved when all of:
+  //   res_primal = ‖A x − b‖∞ / max(1, ‖b‖∞ + ‖x‖∞)                  ≤ tol_feas
+  //   res_dual   = ‖Aᵀy + z − c‖∞ / max(1, ‖c‖∞ + ‖y‖∞ + ‖z‖∞)       ≤ tol_feas
+  //   gap_abs = |cᵀx − bᵀy| ≤ tol_gap_abs   or
+  //   gap_rel = gap_abs / max(1, min(|cᵀx|, |bᵀy|)) ≤ tol_gap_rel
+  double tol_gap_abs = 1e-8;   ///< absolute duality gap, objective units
+  double tol_gap_rel = 1e-8;   ///< relative duality gap, dimensionless
+  double tol_feas = 1e-8;      ///< relative primal and dual residual, dimensionless
+  // Primal infeasible when bᵀŷ > 0 and, with ȳ = ŷ/bᵀŷ, z̄ = ẑ/bᵀŷ (so bᵀȳ = 1, z̄ ∈ K*):
+  //   ‖Aᵀȳ + z̄‖∞ ≤ tol_infeas.
+  // Dual infeasible (unbounded) when cᵀx̂ < 0 and, with x̄ = x̂/(−cᵀx̂) ∈ K:  ‖A x̄‖∞ ≤ tol_infeas.
+  // (A feasible problem can only pass the primal test if its solutions have ‖x‖₁ ≥ 1/tol_infeas.)
+  double tol_infeas = 1e-8;    ///< certificate residual, units of A
+  // When the iteration stops without meeting the tolerances above (iteration or time limit,
+  // numerical failure, stalled steps), the best iterate seen (smallest max of the three ratios
+  // residual/tolerance) is reported as SolvedInaccurate if it meets the same tests with these
+  // looser values; otherwise the status stays and the last iterate is returned.
+  double reduced_tol_gap_abs = 5e-5;
+  double reduced_tol_gap_rel = 5e-5;
+  double reduced_tol_feas = 1e-4;
+
+  int max_iter = 100;                                                   ///< interior-point iterations
+  double time_limit_seconds = std::numeric_limits<double>::infinity();  ///< wall time, checked per iteration
+
+  // ---- Step ----
+  double step_fraction = 0.99;  ///< fraction of the step to the cone boundary (0, 1)
+  double step_min = 1e-8;       ///< a step shorter than this is a stall: the solve stops
+  /// More than stall_max_iter consecutive steps shorter than stall_step also stop the solve
+  /// (NumericalFailure, or SolvedInaccurate if the best iterate meets the reduced tolerances).
+  double stall_step = 1e-3;
+  int stall_max_iter = 5;
+
+  // ---- Scaling ----
+  bool equilibrate = true;          ///< Ruiz equilibration of A (plus scalar scaling of b, c)
+  int equilibrate_max_iter = 15;    ///< Ruiz sweeps
+  double equilibrate_min_scaling = 1e-4;  ///< clamp of the accumulated row/column factors and
+  double equilibrate_max_scaling = 1e4;   ///< of the scalar factors of b and c
+
+  // ---- Linear algebra: normal equations M = A W² Aᵀ, CHOLMOD supernodal LLᵀ ----
+  /// Static regularisation: M + δI with δ = reg_static + ε² · max diag M (ε = machine epsilon),
+  /// in units of the equilibrated M (whose data entries are O(1)).
+  double reg_static = 1e-10;
+  /// Recovery when CHOLMOD reports "not positive definite": δ ← δ · reg_retry_factor, refactor.
+  double reg_retry_factor = 100.0;
+  int reg_max_retries = 8;
+  /// Iterative refinement, two levels: each normal-equation solve is refined on the exact,
+  /// unregularised M until ‖rhs − M dy‖∞ ≤ refine_tol_rel · (1 + ‖rhs‖∞); each Newton direction
+  /// is then refined on its primal and gap equations until
+  /// max(‖A dx − b dτ + η r_p‖∞, |e_gap|) ≤ max(refine_tol_rel · (1 + ‖b‖∞ τ), 1e-3 ‖r_p‖∞)
+  /// (scaled problem). Both stop early when the residual no longer halves.
+  int refine_max_iter = 10;
+  double refine_tol_rel = 1e-13;
+  Ordering ordering = Ordering::Amd;
+
+  // ---- Dense columns (read at construction) ----
+  // A column j of the nonnegative block is dense when
+  //   nnz_j ≥ max(dense_column_min_nnz, dense_column_ratio · (mean nnz per column)).
+  // Dense columns are kept out of the sparse factor and added back by a bordered (Schur
+  // complement) solve of size ≤ dense_column_max; the densest are taken first.
+  bool dense_columns = true;
+  int dense_column_min_nnz = 40;
+  double dense_column_ratio = 10.0;
+  int dense_column_max = 20;
+
+  // ---- Output ----
+  bool verbose = false;              ///< write the iteration log
+  std::ostream* log_stream = nullptr;  ///< where the log goes; null with verbose = std::cout
+
+  /// Readable messages for every invalid field; empty if valid.
+  std::vector<std::string> validate() const;
+};
+
+}  // namespace rbla::conic

@@ -1,0 +1,54 @@
+#pragma once
+// Sparse primal–dual interior-point solver for ConicProblem (LP + second-order cones):
+// homogeneous self-dual embedding, Nesterov–Todd scaling, Mehrotra predictor–corrector, Ruiz equilibration, normal equations A W² Aᵀ factored by CHOLMOD
+// (symbolic analysis once per ConicSolver), dense columns by a bordered solve.
+
+#include "rbla/conic/info.hpp"
+#include "rbla/conic/problem.hpp"
+#include "rbla/conic/settings.hpp"
+
+#include <functional>
+#include <memory>
+
+namespace rbla::conic {
+
+/// Called once per iteration after the row is computed; return false to cancel the solve.
+using ProgressCallback = std::function<bool(const IterationRow&)>;
+
+class ConicSolver {
+ public:
+  /// Validates problem and settings (throws ConicSetupError), equilibrates, builds the normal
+  /// matrix pattern and runs the symbolic factorisation.
+  explicit ConicSolver(ConicProblem problem, Settings settings = {});
+  ~ConicSolver();
+  ConicSolver(ConicSolver&&) noexcept;
+  ConicSolver& operator=(ConicSolver&&) noexcept;
+  ConicSolver(const ConicSolver&) = delete;
+  ConicSolver& operator=(const ConicSolver&) = delete;
+
+  /// Runs the interior-point method from the default start. Never throws for solve outcomes.
+  Solution solve();
+
+  /// New data with the same dimensions / sparsity: the symbolic factorisation is reused.
+  void update_b(const Eigen::VectorXd& b);
+  void update_c(const Eigen::VectorXd& c);
+  /// values in the order of problem().A.valuePtr() (compressed column order), length nnz(A).
+  void update_A_values(const Eigen::VectorXd& values);
+
+  void set_progress_callback(ProgressCallback callback);
+  /// Tolerances, limits and output may be changed between solves. Structural fields
+  /// (ordering, dense_*, equilibrate*) are read at construction only.
+  Settings& settings();
+  const ConicProblem& problem() const;
+  /// Number of symbolic analyses performed so far (1 after construction; updates keep it).
+  int num_symbolic_analyses() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// One-shot convenience: ConicSolver(problem, settings).solve().
+Solution solve(const ConicProblem& problem, const Settings& settings = {});
+
+}  // namespace rbla::conic

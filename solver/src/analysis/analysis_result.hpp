@@ -1,0 +1,132 @@
+// What a limit analysis returns, as typed values in internal units (m, kN). The io layer turns
+// it into the result JSON in the user's units; the svg writer draws it.
+#pragma once
+
+#include "model/model.hpp"
+#include "rbla/conic/info.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rbla::analysis {
+
+using model::Vec3;
+
+/// The answer, in the user's terms (STYLE.md: "domain verdict on top").
+enum class Verdict {
+  Collapse,       ///< a mechanism forms at the load multiplier (or base reaction) reported
+  NoMechanism,    ///< the live load can grow without bound: no collapse (alpha unbounded)
+  CannotStand,    ///< infeasible under dead load alone: the falling blocks are reported
+  SolverFailure,  ///< the conic solver failed numerically; no number is reported
+  TimeLimit,      ///< the time limit ran out before an answer
+  IterationLimit, ///< the interior-point iteration limit ran out before an answer
+  Cancelled,      ///< the progress callback asked to stop
+};
+const char* to_string(Verdict verdict);  // the result schema's `status` values
+
+/// State of one contact point in the mechanism, from the relative velocity of the two blocks.
+enum class ContactState { Closed, Opening, Sliding, OpeningSliding };
+/// State of an interface: as its points, or Hinge when some points open and the others stay closed.
+enum class InterfaceState { Closed, Opening, Sliding, OpeningSliding, Hinge };
+const char* to_string(ContactState state);
+const char* to_string(InterfaceState state);
+
+/// Virtual velocity of a block: translation of its centroid and rotation vector (rad), normalised
+/// as `Mechanism::normalisation` says.
+struct BlockMotion {
+  Vec3 translation = Vec3::Zero();
+  Vec3 rotation = Vec3::Zero();
+  bool moving = false;  ///< part of the mechanism (or of the falling set when it cannot stand)
+};
+
+struct PointResult {
+  Vec3 position = Vec3::Zero();           ///< m
+  double normal_force = 0.0;              ///< kN, compression positive
+  double shear1 = 0.0, shear2 = 0.0;      ///< kN, along the interface tangents
+  Vec3 relative_velocity = Vec3::Zero();  ///< (normal, t1, t2) components of v_b - v_a, normalised like blocks
+  ContactState state = ContactState::Closed;
+};
+
+struct InterfaceResult {
+  InterfaceState state = InterfaceState::Closed;
+  bool cracked = false;          ///< opening or sliding somewhere
+  double normal_force = 0.0;     ///< kN, sum over points
+  double shear_force = 0.0;      ///< kN, magnitude of the summed shear
+  std::vector<PointResult> points;
+};
+
+enum class Normalisation { MaxTranslation, UnitSettlement };
+
+struct Mechanism {
+  Normalisation normalisation = Normalisation::MaxTranslation;
+  std::vector<BlockMotion> blocks;          ///< one per model block (supports at rest, or settling)
+  std::vector<InterfaceResult> interfaces;  ///< one per model interface
+  std::vector<int> cracked_interfaces;      ///< indices into model.interfaces
+};
+
+/// Virtual work of the mechanism (kN m, in the normalised velocities). Static-kinematic check:
+/// alpha * live + dead = dissipation, so alpha_kinematic = (dissipation - dead) / live; for
+/// settlement, base_reaction_kinematic = (dead - dissipation) / settlement velocity.
+struct WorkBalance {
+  double live_work = 0.0;
+  double dead_work = 0.0;
+  double dissipation = 0.0;      ///< friction work at sliding points (non-associative); 0 otherwise
+  double kinematic_value = 0.0;  ///< alpha (dimensionless) or base reaction (kN) from the balance
+  double relative_error = 0.0;   ///< |static - kinematic| / max(1, |static|) (force units for reactions)
+};
+
+struct Accuracy {
+  double relative_gap = 0.0;
+  double primal_residual = 0.0;
+  double dual_residual = 0.0;
+  double equilibrium_residual = 0.0;  ///< kN: largest force imbalance of a block, from the forces reported
+};
+
+/// One solve of the non-associative scheme (Gilbert et al. 2006; Portioli et al. 2014).
+struct NonAssociativeStep {
+  int iteration = 0;
+  double value = 0.0;                    ///< alpha, or the base reaction in kN
+  double max_normal_force_change = 0.0;  ///< kN
+  int interior_point_iterations = 0;
+};
+
+struct ProblemSize {
+  long num_variables = 0;
+  long num_equality_rows = 0;
+  long num_cones = 0;
+  long num_nonzeros = 0;
+};
+
+struct AnalysisResult {
+  Verdict verdict = Verdict::SolverFailure;
+  std::string verdict_text;  ///< one sentence for people
+
+  model::AnalysisType type = model::AnalysisType::LoadMultiplier;
+  model::FrictionModel friction_model = model::FrictionModel::Associative;
+  model::ConeKind cone = model::ConeKind::Exact;
+  int pyramid_faces = 0;
+  bool planar = false;
+  int planar_axis = -1;  ///< 0, 1, 2 for x, y, z when planar
+
+  std::optional<double> load_multiplier;  ///< when Collapse in a load-multiplier analysis
+  std::optional<double> base_reaction;    ///< kN, when Collapse in a settlement analysis
+  Vec3 settlement_direction = Vec3::Zero();
+
+  Mechanism mechanism;  ///< filled for Collapse and CannotStand (falling blocks)
+  WorkBalance work;
+  Accuracy accuracy;
+
+  conic::Info solver_info;                        ///< of the last conic solve
+  std::vector<conic::IterationRow> interior_point_history;  ///< of the last conic solve
+  std::vector<NonAssociativeStep> non_associative;
+  bool non_associative_converged = false;
+  ProblemSize size;
+
+  double assemble_seconds = 0.0;
+  double solve_seconds = 0.0;
+  double mechanism_seconds = 0.0;
+  std::vector<model::Warning> warnings;
+};
+
+}  // namespace rbla::analysis

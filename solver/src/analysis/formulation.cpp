@@ -1,0 +1,382 @@
+#include "analysis/formulation.hpp"
+
+#include "geometry/polyhedron.hpp"
+#include "model/errors.hpp"
+
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rbla::analysis {
+
+namespace {
+
+constexpr double kParallelTolerance = 1e-9;  // |cos| or |sin| below which directions count as exact
+
+Vec3 axis_vector(int axis) {
+  Vec3 e = Vec3::Zero();
+  e[axis] = 1.0;
+  return e;
+}
+
+/// Why `axis` is not a planar extrusion axis of the model; empty when it is.
+std::string planar_obstacle(const model::Model& m, int axis, double& depth) {
+  const Vec3 e = axis_vector(axis);
+  const std::string name = std::string(1, static_cast<char>('x' + axis));
+  if (std::abs(e.dot(m.gravity)) > kParallelTolerance) return "gravity is along " + name;
+  const double tol = m.distance_tolerance();
+  // Only blocks with equilibrium equations must be prisms over one depth: a support enters the
+  // problem only through its interfaces, which are checked below.
+  double lo0 = 0.0, hi0 = 0.0;
+  const model::Block* first = nullptr;
+  for (const model::Block& block : m.blocks) {
+    if (block.is_support()) continue;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Vec3& v : block.vertices) {
+      lo = std::min(lo, v[axis]);
+      hi = std::max(hi, v[axis]);
+    }
+    if (!first) {
+      first = &block;
+      lo0 = lo;
+      hi0 = hi;
+    } else if (std::abs(lo - lo0) > tol || std::abs(hi - hi0) > tol) {
+      return "blocks '" + first->id + "' and '" + block.id + "' do not span the same depth along " + name;
+    }
+    for (const auto& face : block.faces) {
+      const double c = std::abs(geometry::face_geometry(block.vertices, face).normal.dot(e));
+      if (c > 1e-9 && c < 1.0 - 1e-9) return "block '" + block.id + "' is not a prism along " + name;
+    }
+  }
+  depth = hi0 - lo0;
+  const double mid = 0.5 * (lo0 + hi0);
+  for (const auto& contact : m.interfaces) {
+    if (std::abs(contact.normal.dot(e)) > 1e-9) return "interface '" + contact.id + "' is not parallel to " + name;
+  }
+  const model::AnalysisRequest& a = m.analysis;
+  if (a.seismic_direction && std::abs(a.seismic_direction->dot(e)) > kParallelTolerance) {
+    return "the seismic direction has a component along " + name;
+  }
+  if (a.type == model::AnalysisType::Settlement && std::abs(a.settlement_direction.dot(e)) > kParallelTolerance) {
+    return "the settlement direction has a component along " + name;
+  }
+  for (const auto* loads : {&m.dead_loads, &m.live_loads}) {
+    for (const model::PointLoad& load : *loads) {
+      if (std::abs(load.force.dot(e)) > kParallelTolerance * load.force.norm() ||
+          (load.moment - load.moment.dot(e) * e).norm() > kParallelTolerance * load.moment.norm() ||
+          (load.force.norm() > 0.0 && std::abs(load.point[axis] - mid) > tol)) {
+        return "a load on block '" + m.blocks[load.block].id + "' acts out of the plane normal to " + name;
+      }
+    }
+  }
+  return "";
+}
+
+struct Scales {
+  double length = 1.0;
+  double force = 1.0;
+};
+
+/// Mean block size and mean free-block weight: O(1) coefficients whatever the user's units.
+Scales choose_scales(const model::Model& m) {
+  Scales s;
+  double size_sum = 0.0, weight_sum = 0.0;
+  int count = 0, weighted = 0;
+  for (const model::Block& block : m.blocks) {
+    if (block.is_support()) continue;
+    Vec3 lo = block.vertices[0], hi = block.vertices[0];
+    for (const Vec3& v : block.vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+    size_sum += (hi - lo).norm();
+    ++count;
+    if (block.weight() > 0.0) {
+      weight_sum += block.weight();
+      ++weighted;
+    }
+  }
+  if (count > 0 && size_sum > 0.0) s.length = size_sum / count;
+  if (weighted > 0) {
+    s.force = weight_sum / weighted;
+  } else {
+    double load_sum = 0.0;
+    for (const auto& load : m.live_loads) load_sum += load.force.norm();
+    if (load_sum > 0.0) s.force = load_sum / static_cast<double>(m.live_loads.size());
+  }
+  return s;
+}
+
+/// One variable of a contact point before indices are assigned.
+struct VariableSpec {
+  Vec3 force = Vec3::Zero();  // force on block_b per unit of the variable (force-scale units)
+  bool in_radius_row = false;
+};
+
+struct PointSpec {
+  std::vector<VariableSpec> orthant;  // nonnegative variables
+  std::vector<VariableSpec> cone;     // one second-order cone (empty when none)
+  bool has_radius_row = false;
+};
+
+PointSpec friction_variables(const FormulationOptions& options, double mu, const Vec3& n, const Vec3& t1,
+                             const Vec3& t2) {
+  PointSpec spec;
+  const bool pyramid = options.cone != model::ConeKind::Exact;
+  const int m = options.pyramid_faces;
+  // Circumscribed pyramid: its faces touch the cone, so its edges are 1/cos(pi/m) further out.
+  const double edge_factor = options.cone == model::ConeKind::PyramidCircumscribed ? 1.0 / std::cos(M_PI / m) : 1.0;
+  auto edge = [&](int j) { return std::cos(2.0 * M_PI * j / m) * t1 + std::sin(2.0 * M_PI * j / m) * t2; };
+
+  if (options.friction_set == FrictionSet::Cone) {
+    if (options.planar) {
+      // |T| <= mu N in the plane: the two edges of the 2-D cone, n +- mu t.
+      spec.orthant.push_back({n + mu * t1, false});
+      spec.orthant.push_back({n - mu * t1, false});
+    } else if (pyramid) {
+      for (int j = 0; j < m; ++j) spec.orthant.push_back({n + mu * edge_factor * edge(j), false});
+    } else {
+      // (N, tau1, tau2) in Q^3 with T = mu tau: ||T|| <= mu N.
+      spec.cone = {{n, false}, {mu * t1, false}, {mu * t2, false}};
+    }
+    return spec;
+  }
+  // Cylinder of the non-associative scheme: N >= 0 free of the shear, ||T|| <= r.
+  spec.has_radius_row = true;
+  spec.orthant.push_back({n, false});
+  if (options.planar) {
+    spec.orthant.push_back({t1, true});
+    spec.orthant.push_back({-t1, true});
+    spec.orthant.push_back({Vec3::Zero(), true});  // slack of |T| <= r
+  } else if (pyramid) {
+    for (int j = 0; j < m; ++j) spec.orthant.push_back({edge_factor * edge(j), true});
+    spec.orthant.push_back({Vec3::Zero(), true});
+  } else {
+    // (rho, T1, T2) in Q^3 with rho = r fixed by the radius row.
+    spec.cone = {{Vec3::Zero(), true}, {t1, false}, {t2, false}};
+  }
+  return spec;
+}
+
+}  // namespace
+
+PlanarFrame detect_planar(const model::Model& m) {
+  PlanarFrame frame;
+  double best_depth = std::numeric_limits<double>::infinity();
+  std::string reasons;
+  for (int axis = 0; axis < 3; ++axis) {
+    double depth = 0.0;
+    const std::string obstacle = planar_obstacle(m, axis, depth);
+    if (!obstacle.empty()) {
+      reasons += (reasons.empty() ? "" : "; ") + obstacle;
+      continue;
+    }
+    if (depth < best_depth) {
+      best_depth = depth;
+      frame.planar = true;
+      frame.axis = axis;
+    }
+  }
+  if (!frame.planar) {
+    frame.reason = reasons;
+    return frame;
+  }
+  frame.normal = axis_vector(frame.axis);
+  frame.e1 = axis_vector((frame.axis + 1) % 3);
+  frame.e2 = axis_vector((frame.axis + 2) % 3);
+  return frame;
+}
+
+Formulation build_formulation(const model::Model& m, const FormulationOptions& options) {
+  Formulation f;
+  f.options = options;
+  const Scales scales = choose_scales(m);
+  f.length_scale = scales.length;
+  f.force_scale = scales.force;
+  f.settlement = m.analysis.type == model::AnalysisType::Settlement;
+  f.settlement_direction = m.analysis.settlement_direction;
+  f.rows_per_block = options.planar ? 3 : 6;
+  const Vec3 e = options.frame.normal;
+
+  // Equilibrium rows: every free block; under settlement, the moving supports settle together by
+  // the same amount along d, so they share one row: the sum of their loads along d equals R.
+  int num_rows = 0;
+  int settlement_row = -1;
+  f.block_row.assign(m.blocks.size(), -1);
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    const model::Block& block = m.blocks[b];
+    if (!block.is_support()) {
+      f.block_row[b] = num_rows;
+      num_rows += f.rows_per_block;
+    } else if (block.role == model::BlockRole::MovingSupport && f.settlement) {
+      if (settlement_row < 0) settlement_row = num_rows++;
+      f.block_row[b] = settlement_row;
+    }
+  }
+  const int num_equilibrium_rows = num_rows;
+
+  // Contact points and their variables.
+  const double tol = m.distance_tolerance();
+  std::vector<PointSpec> specs;
+  for (std::size_t i = 0; i < m.interfaces.size(); ++i) {
+    const model::ContactInterface& contact = m.interfaces[i];
+    Vec3 t1 = contact.tangent1, t2 = contact.tangent2;
+    std::vector<std::vector<int>> groups;
+    if (options.planar) {
+      // The interface is a rectangle extruded along e: its corners project onto two points of
+      // the segment along the in-plane tangent t = e x n. Corners strictly between carry nothing
+      // a corner could not (no-tension forces at interior points are convex combinations).
+      t1 = e.cross(contact.normal).normalized();
+      t2 = contact.normal.cross(t1);
+      double s_min = std::numeric_limits<double>::infinity(), s_max = -s_min;
+      for (const Vec3& p : contact.polygon) {
+        s_min = std::min(s_min, p.dot(t1));
+        s_max = std::max(s_max, p.dot(t1));
+      }
+      std::vector<int> low, high;
+      for (int k = 0; k < static_cast<int>(contact.polygon.size()); ++k) {
+        const double s = contact.polygon[k].dot(t1);
+        if (s - s_min <= tol) low.push_back(k);
+        else if (s_max - s <= tol) high.push_back(k);
+      }
+      groups.push_back(low);
+      if (!high.empty()) groups.push_back(high);
+    } else {
+      for (int k = 0; k < static_cast<int>(contact.polygon.size()); ++k) groups.push_back({k});
+    }
+    for (auto& corners : groups) {
+      FormulationPoint point;
+      point.interface_index = static_cast<int>(i);
+      point.friction = contact.friction;
+      for (int k : corners) point.position += contact.polygon[k];
+      point.position /= static_cast<double>(corners.size());
+      point.corners = std::move(corners);
+      specs.push_back(friction_variables(options, contact.friction, contact.normal, t1, t2));
+      f.points.push_back(std::move(point));
+    }
+  }
+
+  // Variable indices: the multiplier, then every orthant variable, then the cones (the conic
+  // layer's order). Radius rows follow the equilibrium rows.
+  int num_orthant = 1;
+  for (const PointSpec& spec : specs) num_orthant += static_cast<int>(spec.orthant.size());
+  int next_orthant = 1;
+  int next_cone = num_orthant;
+  f.first_radius_row = num_equilibrium_rows;
+  std::vector<Eigen::Index> soc_dims;
+  std::vector<Eigen::Triplet<double>> triplets;
+  const double L = f.length_scale;
+
+  auto add_block_entries = [&](int block, double sign, int variable, const Vec3& force, const Vec3& position) {
+    const int row = f.block_row[block];
+    if (row < 0 || force.isZero(0.0)) return;
+    const model::Block& target = m.blocks[block];
+    if (target.role == model::BlockRole::MovingSupport) {
+      triplets.emplace_back(row, variable, sign * force.dot(f.settlement_direction));
+      return;
+    }
+    const Vec3 moment = (position - target.centroid).cross(force) / L;
+    if (options.planar) {
+      triplets.emplace_back(row, variable, sign * force.dot(options.frame.e1));
+      triplets.emplace_back(row + 1, variable, sign * force.dot(options.frame.e2));
+      triplets.emplace_back(row + 2, variable, sign * moment.dot(e));
+    } else {
+      for (int k = 0; k < 3; ++k) {
+        if (force[k] != 0.0) triplets.emplace_back(row + k, variable, sign * force[k]);
+        if (moment[k] != 0.0) triplets.emplace_back(row + 3 + k, variable, sign * moment[k]);
+      }
+    }
+  };
+
+  for (std::size_t p = 0; p < f.points.size(); ++p) {
+    FormulationPoint& point = f.points[p];
+    const PointSpec& spec = specs[p];
+    const model::ContactInterface& contact = m.interfaces[point.interface_index];
+    if (spec.has_radius_row) point.radius_row = num_rows++;
+    auto place = [&](const VariableSpec& variable, int index) {
+      point.generators.push_back({index, variable.force});
+      add_block_entries(contact.block_b, +1.0, index, variable.force, point.position);
+      add_block_entries(contact.block_a, -1.0, index, variable.force, point.position);
+      if (variable.in_radius_row) triplets.emplace_back(point.radius_row, index, 1.0);
+    };
+    for (const VariableSpec& variable : spec.orthant) place(variable, next_orthant++);
+    if (!spec.cone.empty()) {
+      for (const VariableSpec& variable : spec.cone) place(variable, next_cone++);
+      soc_dims.push_back(static_cast<Eigen::Index>(spec.cone.size()));
+    }
+  }
+  f.num_radius_rows = num_rows - num_equilibrium_rows;
+
+  // Loads, as block wrenches about the centroid: dead on the right-hand side, live in the
+  // multiplier's column.
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(num_rows);
+  Eigen::VectorXd live = Eigen::VectorXd::Zero(num_rows);
+  auto add_wrench = [&](Eigen::VectorXd& target, int block, const Vec3& force, const Vec3& moment_about_centroid) {
+    const int row = f.block_row[block];
+    if (row < 0 || m.blocks[block].is_support()) return;
+    const Vec3 fs = force / f.force_scale;
+    const Vec3 ms = moment_about_centroid / (f.force_scale * L);
+    if (options.planar) {
+      target[row] += fs.dot(options.frame.e1);
+      target[row + 1] += fs.dot(options.frame.e2);
+      target[row + 2] += ms.dot(e);
+    } else {
+      target.segment<3>(row) += fs;
+      target.segment<3>(row + 3) += ms;
+    }
+  };
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    const model::Block& block = m.blocks[b];
+    if (block.is_support()) continue;
+    add_wrench(rhs, static_cast<int>(b), block.weight() * m.gravity, Vec3::Zero());
+    if (!f.settlement && m.analysis.seismic_direction) {
+      add_wrench(live, static_cast<int>(b), block.weight() * *m.analysis.seismic_direction, Vec3::Zero());
+    }
+  }
+  for (const model::PointLoad& load : m.dead_loads) {
+    add_wrench(rhs, load.block, load.force, (load.point - m.blocks[load.block].centroid).cross(load.force) + load.moment);
+  }
+  if (!f.settlement) {
+    for (const model::PointLoad& load : m.live_loads) {
+      add_wrench(live, load.block, load.force, (load.point - m.blocks[load.block].centroid).cross(load.force) + load.moment);
+    }
+  } else {
+    // The ground holds the moving supports with a reaction -R d (Portioli & Cascini 2016).
+    if (settlement_row >= 0) live[settlement_row] = -1.0;
+  }
+  for (int row = 0; row < num_rows; ++row) {
+    if (live[row] != 0.0) triplets.emplace_back(row, f.multiplier_variable, live[row]);
+  }
+
+  const int num_variables = next_cone;
+  f.problem.A.resize(num_rows, num_variables);
+  f.problem.A.setFromTriplets(triplets.begin(), triplets.end());
+  f.problem.A.makeCompressed();
+  f.problem.b = -rhs;
+  f.problem.c = Eigen::VectorXd::Zero(num_variables);
+  f.problem.c[f.multiplier_variable] = f.settlement ? 1.0 : -1.0;  // min R, or max alpha
+  f.problem.cones.num_nonneg = num_orthant;
+  f.problem.cones.soc_dims = std::move(soc_dims);
+  return f;
+}
+
+std::vector<Vec3> Formulation::point_forces(const Eigen::VectorXd& x) const {
+  std::vector<Vec3> forces(points.size(), Vec3::Zero());
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    for (const Generator& g : points[p].generators) forces[p] += x[g.variable] * g.force;
+    forces[p] *= force_scale;
+  }
+  return forces;
+}
+
+Eigen::VectorXd Formulation::rhs_with_radii(const std::vector<double>& radii_kN) const {
+  Eigen::VectorXd b = problem.b;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    if (points[p].radius_row >= 0) b[points[p].radius_row] = radii_kN[p] / force_scale;
+  }
+  return b;
+}
+
+}  // namespace rbla::analysis

@@ -1,0 +1,97 @@
+// The static (lower-bound) problem of rigid block limit analysis as a conic program
+// (METHOD.md; Portioli et al. 2014, eq. 1; Portioli & Cascini 2016 for the moving support):
+//
+//   maximise alpha  subject to  A c + f_D + alpha f_L = 0,  contact forces c in their friction sets,
+//
+// or, under settlement, minimise the base reaction R of the moving supports. The conic layer sees
+// only matrices and cones; this file is the only place that turns blocks into them.
+#pragma once
+
+#include "model/model.hpp"
+#include "rbla/conic/problem.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace rbla::analysis {
+
+using model::Vec3;
+
+/// A planar scene: every block a right prism along `axis` over the same depth, every interface
+/// and load in the plane. Then each block has 3 equations and the problem is a linear program.
+struct PlanarFrame {
+  bool planar = false;
+  int axis = -1;              ///< extrusion axis (0 x, 1 y, 2 z)
+  Vec3 normal = Vec3::Zero();  ///< unit vector along the axis
+  Vec3 e1 = Vec3::Zero();      ///< in-plane basis, e1 x e2 = normal
+  Vec3 e2 = Vec3::Zero();
+  std::string reason;          ///< why the scene is not planar (for messages), when it is not
+};
+
+/// Finds the extrusion axis of a planar scene, if there is one (the thinnest qualifying axis).
+PlanarFrame detect_planar(const model::Model& model);
+
+/// How friction is represented at a contact point.
+enum class FrictionSet {
+  Cone,      ///< associative: ||T|| <= mu N (exact second-order cone, or a pyramid)
+  Cylinder,  ///< non-associative step: N >= 0 and ||T|| <= r, r fixed (Gilbert et al. 2006)
+};
+
+/// Force basis of one variable: the force it exerts on block_b per unit value (kN / force scale).
+struct Generator {
+  int variable = 0;
+  Vec3 force = Vec3::Zero();
+};
+
+/// A contact point of the formulation. In 3-D one per interface corner; in a planar scene one
+/// per distinct corner of the interface's projection (two coincident corners of an extruded
+/// interface make one planar point, carrying their summed force).
+struct FormulationPoint {
+  int interface_index = -1;
+  std::vector<int> corners;  ///< indices into the interface polygon represented by this point
+  Vec3 position = Vec3::Zero();
+  double friction = 0.0;
+  std::vector<Generator> generators;
+  int radius_row = -1;  ///< cylinder: the row fixing the radius (sum of tangential budget = r)
+};
+
+struct FormulationOptions {
+  model::ConeKind cone = model::ConeKind::Exact;
+  int pyramid_faces = 8;
+  FrictionSet friction_set = FrictionSet::Cone;
+  bool planar = false;  ///< use `frame` (from detect_planar) and 3 equations per block
+  PlanarFrame frame;
+};
+
+/// The conic problem plus everything needed to read its solution back as forces and velocities.
+struct Formulation {
+  conic::ConicProblem problem;
+  FormulationOptions options;
+  double length_scale = 1.0;  ///< m: moment rows are divided by it
+  double force_scale = 1.0;   ///< kN: force variables and rows are in units of it
+  int multiplier_variable = 0;  ///< alpha, or R / force_scale under settlement
+  int rows_per_block = 6;
+  /// First equilibrium row of each block; -1 for fixed supports. Under settlement all moving
+  /// supports share one row (their summed load along the settlement direction).
+  std::vector<int> block_row;
+  std::vector<FormulationPoint> points;
+  bool settlement = false;
+  Vec3 settlement_direction = Vec3::Zero();
+  int num_radius_rows = 0;
+  int first_radius_row = 0;
+
+  /// Forces at every formulation point (kN, global frame) from a primal solution x.
+  std::vector<Vec3> point_forces(const Eigen::VectorXd& x) const;
+  /// Right-hand side with the cylinder radii (kN, one per point) in the radius rows.
+  Eigen::VectorXd rhs_with_radii(const std::vector<double>& radii_kN) const;
+};
+
+/// Builds the conic problem. Non-dimensionalised (METHOD.md, "Units and scale"): forces in units
+/// of the mean free-block weight, moments additionally divided by the mean block size, so mm and
+/// m models, N and kN, solve identically. Throws model::ModelError for requests the scene cannot
+/// meet (planar forced on a 3-D scene).
+Formulation build_formulation(const model::Model& model, const FormulationOptions& options);
+
+}  // namespace rbla::analysis

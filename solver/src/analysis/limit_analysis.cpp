@@ -1,0 +1,407 @@
+#include "analysis/limit_analysis.hpp"
+
+#include "analysis/formulation.hpp"
+#include "analysis/mechanism.hpp"
+#include "model/errors.hpp"
+#include "rbla/conic/io.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace rbla::analysis {
+
+const char* to_string(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::Collapse: return "collapse";
+    case Verdict::NoMechanism: return "no_mechanism";
+    case Verdict::CannotStand: return "cannot_stand";
+    case Verdict::SolverFailure: return "solver_failure";
+    case Verdict::TimeLimit: return "time_limit";
+    case Verdict::IterationLimit: return "iteration_limit";
+    case Verdict::Cancelled: return "cancelled";
+  }
+  return "?";
+}
+
+const char* to_string(ContactState state) {
+  switch (state) {
+    case ContactState::Closed: return "closed";
+    case ContactState::Opening: return "opening";
+    case ContactState::Sliding: return "sliding";
+    case ContactState::OpeningSliding: return "opening_sliding";
+  }
+  return "?";
+}
+
+const char* to_string(InterfaceState state) {
+  switch (state) {
+    case InterfaceState::Closed: return "closed";
+    case InterfaceState::Opening: return "opening";
+    case InterfaceState::Sliding: return "sliding";
+    case InterfaceState::OpeningSliding: return "opening_sliding";
+    case InterfaceState::Hinge: return "hinge";
+  }
+  return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+std::string format(double value, int precision = 6) {
+  std::ostringstream out;
+  out.precision(precision);
+  out << value;
+  return out.str();
+}
+
+Verdict verdict_of(conic::SolveStatus status, bool settlement) {
+  switch (status) {
+    case conic::SolveStatus::Solved:
+    case conic::SolveStatus::SolvedInaccurate: return Verdict::Collapse;
+    case conic::SolveStatus::PrimalInfeasible: return Verdict::CannotStand;
+    // Minimising a reaction that is >= 0 cannot be unbounded: that would be a solver failure.
+    case conic::SolveStatus::DualInfeasible: return settlement ? Verdict::SolverFailure : Verdict::NoMechanism;
+    case conic::SolveStatus::IterationLimit: return Verdict::IterationLimit;
+    case conic::SolveStatus::TimeLimit: return Verdict::TimeLimit;
+    case conic::SolveStatus::NumericalFailure: return Verdict::SolverFailure;
+    case conic::SolveStatus::Cancelled: return Verdict::Cancelled;
+  }
+  return Verdict::SolverFailure;
+}
+
+/// Virtual power of the dead and live loads for the block motions (kN m per unit time).
+void load_work(const model::Model& m, const std::vector<BlockMotion>& motions, bool settlement, double& dead,
+               double& live) {
+  dead = live = 0.0;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    const model::Block& block = m.blocks[b];
+    if (block.is_support()) continue;
+    dead += block.weight() * m.gravity.dot(motions[b].translation);
+    if (!settlement && m.analysis.seismic_direction) {
+      live += block.weight() * m.analysis.seismic_direction->dot(motions[b].translation);
+    }
+  }
+  auto power = [&](const model::PointLoad& load) {
+    return load.force.dot(point_velocity(m, motions, load.block, load.point)) + load.moment.dot(motions[load.block].rotation);
+  };
+  for (const auto& load : m.dead_loads) dead += power(load);
+  if (!settlement) {
+    for (const auto& load : m.live_loads) live += power(load);
+  }
+}
+
+/// Largest force imbalance over the blocks' force rows, in kN, of A x - b.
+double equilibrium_residual(const Formulation& f, const Eigen::VectorXd& x) {
+  const Eigen::VectorXd r = f.problem.A * x - f.problem.b;
+  double worst = 0.0;
+  for (std::size_t b = 0; b < f.block_row.size(); ++b) {
+    const int row = f.block_row[b];
+    if (row < 0) continue;
+    const int force_rows = f.rows_per_block == 6 ? 3 : 2;
+    for (int k = 0; k < force_rows && row + k < f.first_radius_row; ++k) {
+      worst = std::max(worst, std::abs(r[row + k]));
+    }
+  }
+  return worst * f.force_scale;
+}
+
+conic::Settings solver_settings(const model::AnalysisRequest& request, const AnalysisOptions& options,
+                                double time_left) {
+  conic::Settings settings;
+  settings.tol_gap_rel = request.tol_relative_gap;
+  settings.tol_feas = request.tol_feasibility;
+  settings.tol_infeas = std::max(request.tol_feasibility, 1e-10);
+  settings.time_limit_seconds = time_left;
+  settings.verbose = options.log != nullptr;
+  settings.log_stream = options.log;
+  return settings;
+}
+
+double multiplier_value(const Formulation& f, const Eigen::VectorXd& x) {
+  const double value = x[f.multiplier_variable];
+  return f.settlement ? value * f.force_scale : value;
+}
+
+std::vector<double> normal_forces(const model::Model& m, const Formulation& f, const std::vector<Vec3>& forces) {
+  std::vector<double> normals(forces.size());
+  for (std::size_t p = 0; p < forces.size(); ++p) {
+    normals[p] = std::max(0.0, forces[p].dot(m.interfaces[f.points[p].interface_index].normal));
+  }
+  return normals;
+}
+
+/// Fills the mechanism, work balance and accuracy of a solved problem.
+void read_solution(const model::Model& m, const Formulation& f, const conic::Solution& solution, bool associative,
+                   const std::vector<double>& radii, AnalysisResult& result) {
+  const auto start = Clock::now();
+  const std::vector<Vec3> forces = f.point_forces(solution.x);
+  result.mechanism.blocks = block_velocities(m, f, solution.y);
+  result.mechanism.normalisation = f.settlement ? Normalisation::UnitSettlement : Normalisation::MaxTranslation;
+  // One unit of the user's length: displacements read in the user's units come out as 1.
+  normalise(m, f, result.mechanism.normalisation, m.units.length_to_m, result.mechanism.blocks);
+  fill_interfaces(m, f, forces, associative, result.mechanism);
+
+  double dissipation = 0.0;
+  if (!radii.empty()) {
+    // Cylinder step: the fixed shear capacity r_k works against the slip (no dilatancy).
+    for (std::size_t p = 0; p < f.points.size(); ++p) {
+      const auto& interface_result = result.mechanism.interfaces[f.points[p].interface_index];
+      double slip = 0.0;
+      for (int k : f.points[p].corners) {
+        const Vec3& dv = interface_result.points[k].relative_velocity;
+        slip += std::hypot(dv[1], dv[2]) / static_cast<double>(f.points[p].corners.size());
+      }
+      dissipation += radii[p] * slip;
+    }
+  }
+  double dead = 0.0, live = 0.0;
+  load_work(m, result.mechanism.blocks, f.settlement, dead, live);
+  WorkBalance& work = result.work;
+  work.dead_work = dead;
+  work.live_work = live;
+  work.dissipation = dissipation;
+  const double value = multiplier_value(f, solution.x);
+  if (f.settlement) {
+    // Virtual power: dead + (-R d).(v_s d) = dissipation, with v_s the normalised settlement.
+    work.kinematic_value = (dead - dissipation) / m.units.length_to_m;
+    work.relative_error = std::abs(value - work.kinematic_value) / std::max(std::abs(value), f.force_scale * 1e-12);
+  } else if (live != 0.0) {
+    work.kinematic_value = (dissipation - dead) / live;
+    work.relative_error = std::abs(value - work.kinematic_value) / std::max(1.0, std::abs(value));
+  }
+  result.accuracy.relative_gap = solution.info.gap_rel;
+  result.accuracy.primal_residual = solution.info.res_primal;
+  result.accuracy.dual_residual = solution.info.res_dual;
+  result.accuracy.equilibrium_residual = equilibrium_residual(f, solution.x);
+  result.mechanism_seconds += seconds_since(start);
+}
+
+/// Which blocks fall, from a primal infeasibility certificate y (b^T y > 0, -A^T y in K*): a
+/// kinematically admissible motion on which the dead loads do positive work.
+void read_certificate(const model::Model& m, const Formulation& f, const conic::Solution& solution,
+                      AnalysisResult& result) {
+  result.mechanism.blocks = block_velocities(m, f, solution.y);
+  result.mechanism.normalisation = Normalisation::MaxTranslation;
+  normalise(m, f, Normalisation::MaxTranslation, m.units.length_to_m, result.mechanism.blocks);
+  const std::vector<Vec3> no_forces(f.points.size(), Vec3::Zero());
+  fill_interfaces(m, f, no_forces, true, result.mechanism);
+}
+
+void record_size(const Formulation& f, AnalysisResult& result) {
+  result.size.num_variables = f.problem.A.cols();
+  result.size.num_equality_rows = f.problem.A.rows();
+  result.size.num_cones = static_cast<long>(f.problem.cones.num_nonneg + f.problem.cones.soc_dims.size());
+  result.size.num_nonzeros = f.problem.A.nonZeros();
+}
+
+void write_verdict_text(const model::Model& m, AnalysisResult& result) {
+  const std::string force_unit = m.units.force_name;
+  std::size_t falling = 0;
+  for (const auto& motion : result.mechanism.blocks) falling += motion.moving ? 1 : 0;
+  const std::size_t cracked = result.mechanism.cracked_interfaces.size();
+  switch (result.verdict) {
+    case Verdict::Collapse:
+      if (result.base_reaction) {
+        result.verdict_text = "Collapse under settlement: base reaction at collapse R = " +
+                              format(*result.base_reaction / m.units.force_to_kN) + " " + force_unit + "; " +
+                              std::to_string(cracked) + " interfaces crack.";
+      } else {
+        result.verdict_text = "Collapse at load multiplier alpha = " + format(result.load_multiplier.value_or(0.0)) +
+                              "; " + std::to_string(falling) + " blocks move, " + std::to_string(cracked) +
+                              " interfaces crack.";
+      }
+      break;
+    case Verdict::NoMechanism:
+      result.verdict_text = "No mechanism: the live load can grow without bound (alpha unbounded).";
+      break;
+    case Verdict::CannotStand:
+      result.verdict_text = "Cannot stand under dead load alone: " + std::to_string(falling) + " blocks fall.";
+      break;
+    case Verdict::SolverFailure:
+      result.verdict_text = "No answer: the conic solver failed (" +
+                            std::string(conic::to_string(result.solver_info.status)) + ").";
+      break;
+    case Verdict::TimeLimit: result.verdict_text = "No answer: the time limit ran out."; break;
+    case Verdict::IterationLimit: result.verdict_text = "No answer: the iteration limit ran out."; break;
+    case Verdict::Cancelled: result.verdict_text = "Cancelled before an answer."; break;
+  }
+}
+
+}  // namespace
+
+AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
+  const auto start = Clock::now();
+  const model::AnalysisRequest& request = m.analysis;
+  AnalysisResult result;
+  result.type = request.type;
+  result.friction_model = request.friction_model;
+  result.cone = request.cone;
+  result.pyramid_faces = request.cone == model::ConeKind::Exact ? 0 : request.pyramid_faces;
+  result.settlement_direction = request.settlement_direction;
+
+  const PlanarFrame frame = detect_planar(m);
+  if (request.formulation == model::Formulation::Planar && !frame.planar) {
+    throw model::ModelError("/analysis/formulation", "the scene is not planar: " + frame.reason);
+  }
+  result.planar = request.formulation == model::Formulation::Planar ||
+                  (request.formulation == model::Formulation::Auto && frame.planar);
+  result.planar_axis = result.planar ? frame.axis : -1;
+  if (result.planar && request.cone != model::ConeKind::Exact) {
+    result.warnings.push_back({"pyramid_not_needed",
+                               "the scene is planar: its friction cone has exactly two edges, so the pyramid "
+                               "setting changes nothing",
+                               "/analysis/cone"});
+  }
+
+  FormulationOptions formulation_options;
+  formulation_options.cone = request.cone;
+  formulation_options.pyramid_faces = request.pyramid_faces;
+  formulation_options.planar = result.planar;
+  formulation_options.frame = frame;
+  const Formulation formulation = build_formulation(m, formulation_options);
+  record_size(formulation, result);
+  result.assemble_seconds = seconds_since(start);
+  if (!options.dump_problem_path.empty()) {
+    const std::string& path = options.dump_problem_path;
+    const bool mps = path.size() > 4 && path.compare(path.size() - 4, 4, ".mps") == 0;
+    if (mps) conic::write_mps(formulation.problem, path);
+    else conic::write_cbf(formulation.problem, path);
+  }
+
+  auto time_left = [&] {
+    if (request.time_limit_seconds <= 0.0) return std::numeric_limits<double>::infinity();
+    return std::max(0.0, request.time_limit_seconds - seconds_since(start));
+  };
+
+  const auto solve_start = Clock::now();
+  conic::ConicSolver solver(formulation.problem, solver_settings(request, options, time_left()));
+  if (options.progress) solver.set_progress_callback(options.progress);
+  conic::Solution solution = solver.solve();
+  result.solve_seconds += seconds_since(solve_start);
+  result.solver_info = solution.info;
+  result.interior_point_history = solution.info.history;
+  result.verdict = verdict_of(solution.info.status, formulation.settlement);
+  if (solution.info.status == conic::SolveStatus::SolvedInaccurate) {
+    result.warnings.push_back({"inaccurate_solution",
+                               "the conic solver met only its reduced tolerances (relative gap " +
+                                   format(solution.info.gap_rel, 3) + ")",
+                               ""});
+  }
+
+  if (result.verdict == Verdict::CannotStand) {
+    read_certificate(m, formulation, solution, result);
+  } else if (result.verdict == Verdict::Collapse) {
+    read_solution(m, formulation, solution, true, {}, result);
+    double value = multiplier_value(formulation, solution.x);
+
+    if (request.friction_model == model::FrictionModel::NonAssociative) {
+      // Gilbert et al. (2006), Portioli et al. (2014): replace each cone by a cylinder of radius
+      // mu N from the previous step, so sliding does not dilate; damp the radii
+      // (r <- d mu N + (1 - d) r), which stops the plain fixed point from oscillating.
+      result.non_associative.push_back({0, value, 0.0, solution.info.iterations});
+      FormulationOptions cylinder_options = formulation_options;
+      cylinder_options.friction_set = FrictionSet::Cylinder;
+      const auto assemble_start = Clock::now();
+      const Formulation cylinder = build_formulation(m, cylinder_options);
+      result.assemble_seconds += seconds_since(assemble_start);
+      record_size(cylinder, result);
+
+      const std::vector<Vec3> forces = formulation.point_forces(solution.x);
+      std::vector<double> normals = normal_forces(m, formulation, forces);
+      // A small floor keeps every cylinder with an interior (METHOD.md).
+      const double floor = 1e-9 * formulation.force_scale;
+      std::vector<double> radii(normals.size());
+      for (std::size_t p = 0; p < radii.size(); ++p) radii[p] = std::max(floor, cylinder.points[p].friction * normals[p]);
+
+      // Early steps to a looser gap; the converged step is re-solved at the requested one.
+      conic::Settings settings = solver_settings(request, options, time_left());
+      const double loose = std::max(request.tol_relative_gap, 1e-6);
+      settings.tol_gap_rel = loose;
+      settings.tol_feas = std::max(request.tol_feasibility, 1e-7);
+      conic::ConicProblem first = cylinder.problem;
+      first.b = cylinder.rhs_with_radii(radii);
+      const auto cylinder_start = Clock::now();
+      conic::ConicSolver cylinder_solver(std::move(first), settings);
+      if (options.progress) cylinder_solver.set_progress_callback(options.progress);
+      result.solve_seconds += seconds_since(cylinder_start);
+
+      std::vector<double> used_radii = radii;
+      conic::Solution step;
+      bool have_step = false;
+      for (int iteration = 1; iteration <= request.non_associative_max_iterations; ++iteration) {
+        cylinder_solver.settings().time_limit_seconds = time_left();
+        const auto step_start = Clock::now();
+        conic::Solution next = cylinder_solver.solve();
+        result.solve_seconds += seconds_since(step_start);
+        if (!conic::has_solution(next.info.status)) {
+          result.warnings.push_back({"non_associative_step_failed",
+                                     "non-associative step " + std::to_string(iteration) + " ended with " +
+                                         conic::to_string(next.info.status) + "; the last completed step is reported",
+                                     ""});
+          if (next.info.status == conic::SolveStatus::TimeLimit) result.verdict = Verdict::TimeLimit;
+          if (next.info.status == conic::SolveStatus::Cancelled) result.verdict = Verdict::Cancelled;
+          break;
+        }
+        const double next_value = multiplier_value(cylinder, next.x);
+        const std::vector<double> next_normals = normal_forces(m, cylinder, cylinder.point_forces(next.x));
+        double change = 0.0;
+        for (std::size_t p = 0; p < next_normals.size(); ++p) change = std::max(change, std::abs(next_normals[p] - normals[p]));
+        result.non_associative.push_back({iteration, next_value, change, next.info.iterations});
+        const double previous = value;
+        step = std::move(next);
+        have_step = true;
+        used_radii = radii;
+        value = next_value;
+        normals = next_normals;
+        const double scale = formulation.settlement ? std::max(std::abs(value), 1e-12 * formulation.force_scale)
+                                                    : std::max(std::abs(value), 1e-12);
+        if (std::abs(value - previous) <= request.non_associative_tolerance * scale) {
+          result.non_associative_converged = true;
+          break;
+        }
+        const double d = request.non_associative_damping;
+        for (std::size_t p = 0; p < radii.size(); ++p) {
+          radii[p] = std::max(floor, d * cylinder.points[p].friction * normals[p] + (1.0 - d) * radii[p]);
+        }
+        cylinder_solver.update_b(cylinder.rhs_with_radii(radii));
+      }
+      if (have_step && result.non_associative_converged && loose > request.tol_relative_gap) {
+        cylinder_solver.settings().tol_gap_rel = request.tol_relative_gap;
+        cylinder_solver.settings().tol_feas = request.tol_feasibility;
+        cylinder_solver.settings().time_limit_seconds = time_left();
+        cylinder_solver.update_b(cylinder.rhs_with_radii(used_radii));
+        const auto final_start = Clock::now();
+        conic::Solution tight = cylinder_solver.solve();
+        result.solve_seconds += seconds_since(final_start);
+        if (conic::has_solution(tight.info.status)) {
+          step = std::move(tight);
+          value = multiplier_value(cylinder, step.x);
+        }
+      }
+      if (!result.non_associative_converged && have_step) {
+        result.warnings.push_back({"non_associative_not_converged",
+                                   "the non-associative scheme did not converge in " +
+                                       std::to_string(request.non_associative_max_iterations) +
+                                       " steps; the last step is reported",
+                                   "/analysis/non_associative/max_iterations"});
+      }
+      if (have_step) {
+        result.solver_info = step.info;
+        result.interior_point_history = step.info.history;
+        result.mechanism = Mechanism{};
+        result.mechanism_seconds = 0.0;
+        read_solution(m, cylinder, step, false, used_radii, result);
+      }
+    }
+    if (formulation.settlement) result.base_reaction = value;
+    else result.load_multiplier = value;
+  }
+  write_verdict_text(m, result);
+  return result;
+}
+
+}  // namespace rbla::analysis

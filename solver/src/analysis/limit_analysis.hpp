@@ -1,0 +1,33 @@
+// Rigid block limit analysis of a prepared model: the conic solve (or, for non-associative
+// friction, the iterative scheme), the verdict, and the collapse mechanism from the dual.
+#pragma once
+
+#include "analysis/analysis_result.hpp"
+#include "model/model.hpp"
+#include "rbla/conic/solver.hpp"
+
+#include <iosfwd>
+#include <string>
+
+namespace rbla::analysis {
+
+struct AnalysisOptions {
+  /// Interior-point iteration log of every conic solve (null: silent).
+  std::ostream* log = nullptr;
+  /// Called once per interior-point iteration; returning false cancels the analysis.
+  conic::ProgressCallback progress;
+  /// When not empty, the first conic problem is written there: CBF (any problem) or, for a
+  /// linear program and a path ending in ".mps", free MPS. See rbla/conic/io.hpp.
+  std::string dump_problem_path;
+};
+
+/// Runs the analysis the model requests (model.analysis). Throws model::ModelError only for
+/// requests the scene cannot meet (a planar formulation forced on a 3-D scene); every solve
+/// outcome, including failures, is a Verdict in the result.
+AnalysisResult analyse(const model::Model& model, const AnalysisOptions& options = {});
+
+/// Contact states are read from relative velocities: components below this fraction of the
+/// largest relative velocity in the mechanism count as zero.
+inline constexpr double kVelocityThreshold = 1e-5;
+
+}  // namespace rbla::analysis

@@ -1,0 +1,135 @@
+#pragma once
+// Small interface each cone implements (Clarabel's cones/ layout). All vectors are this cone's
+// segment of a global vector. Notation (Vandenberghe, "The CVXOPT linear and quadratic cone
+// program solvers", 2010, §4): the Nesterov–Todd scaling W of the pair (x, z) satisfies
+//   λ = W z = W⁻¹ x   (W symmetric positive definite, W K = K),
+// and the linearised complementarity is  λ ∘ (W dz + W⁻¹ dx) = d,  "∘" the Jordan product.
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+namespace rbla::conic::detail {
+
+using Vec = Eigen::VectorXd;
+using VecRef = Eigen::Ref<Eigen::VectorXd>;
+using ConstVecRef = Eigen::Ref<const Eigen::VectorXd>;
+
+/// A group of variables whose W² is one dense block (an SOC; a single nonnegative variable).
+struct ScalingBlock {
+  Eigen::Index first = 0;  ///< first variable (global index)
+  Eigen::Index size = 0;
+};
+
+class Cone {
+ public:
+  Cone(Eigen::Index offset, Eigen::Index dim) : offset_(offset), dim_(dim) {}
+  virtual ~Cone() = default;
+  Eigen::Index offset() const { return offset_; }
+  Eigen::Index dim() const { return dim_; }
+
+  virtual Eigen::Index degree() const = 0;
+  virtual void set_identity(VecRef e) const = 0;
+  /// Computes W and λ from interior x, z; false if either is not strictly interior.
+  virtual bool update_scaling(ConstVecRef x, ConstVecRef z) = 0;
+  virtual void lambda(VecRef out) const = 0;
+  virtual void mul_W(ConstVecRef v, VecRef out) const = 0;
+  virtual void mul_Winv(ConstVecRef v, VecRef out) const = 0;
+  virtual void mul_W2(ConstVecRef v, VecRef out) const = 0;
+  /// out = a ∘ b.
+  virtual void jordan_product(ConstVecRef a, ConstVecRef b, VecRef out) const = 0;
+  /// out = λ \ d, i.e. the v with λ ∘ v = d.
+  virtual void lambda_divide(ConstVecRef d, VecRef out) const = 0;
+  /// Largest α ≥ 0 with v + α dv ∈ K for interior v (+inf if unbounded).
+  virtual double max_step(ConstVecRef v, ConstVecRef dv) const = 0;
+  virtual void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const = 0;
+  /// Writes the dense W² of each of this cone's blocks, column-major, consecutively.
+  virtual double* pack_W2(double* out) const = 0;
+
+ private:
+  Eigen::Index offset_;
+  Eigen::Index dim_;
+};
+
+/// R_+^n: W = diag(√(x/z)), λ = √(x z), Jordan product = elementwise product.
+class NonnegativeCone final : public Cone {
+ public:
+  NonnegativeCone(Eigen::Index offset, Eigen::Index dim);
+  Eigen::Index degree() const override { return dim(); }
+  void set_identity(VecRef e) const override;
+  bool update_scaling(ConstVecRef x, ConstVecRef z) override;
+  void lambda(VecRef out) const override;
+  void mul_W(ConstVecRef v, VecRef out) const override;
+  void mul_Winv(ConstVecRef v, VecRef out) const override;
+  void mul_W2(ConstVecRef v, VecRef out) const override;
+  void jordan_product(ConstVecRef a, ConstVecRef b, VecRef out) const override;
+  void lambda_divide(ConstVecRef d, VecRef out) const override;
+  double max_step(ConstVecRef v, ConstVecRef dv) const override;
+  void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
+  double* pack_W2(double* out) const override;
+
+ private:
+  Vec w_;       // diagonal of W
+  Vec lambda_;
+};
+
+/// Q^q = {(t, u) : ‖u‖ ≤ t}, J = diag(1, −1, …, −1), det v = vᵀJv.
+/// NT scaling (CVXOPT doc §4.2): x̄ = x/√det x, z̄ = z/√det z, γ = √((1 + x̄ᵀz̄)/2),
+/// w̄ = (x̄ + J z̄)/(2γ) (so w̄ᵀJw̄ = 1), β = (det x / det z)^¼, and its Jordan square root
+/// v = (w̄ + e)/√(2(w̄₀ + 1)) (CVXOPT stores this v):
+/// W = β (2 v vᵀ − J),  W⁻¹ = β⁻¹ (2 J v vᵀ J − J),  W² = β² (2 w̄ w̄ᵀ − J).
+class SecondOrderCone final : public Cone {
+ public:
+  SecondOrderCone(Eigen::Index offset, Eigen::Index dim);
+  Eigen::Index degree() const override { return 1; }
+  void set_identity(VecRef e) const override;
+  bool update_scaling(ConstVecRef x, ConstVecRef z) override;
+  void lambda(VecRef out) const override;
+  void mul_W(ConstVecRef v, VecRef out) const override;
+  void mul_Winv(ConstVecRef v, VecRef out) const override;
+  void mul_W2(ConstVecRef v, VecRef out) const override;
+  void jordan_product(ConstVecRef a, ConstVecRef b, VecRef out) const override;
+  void lambda_divide(ConstVecRef d, VecRef out) const override;
+  double max_step(ConstVecRef v, ConstVecRef dv) const override;
+  void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
+  double* pack_W2(double* out) const override;
+
+  /// √(v₀² − ‖v₁‖²) computed as √((v₀ − ‖v₁‖)(v₀ + ‖v₁‖)); ≤ 0 → returns −1 (not interior).
+  static double jordan_norm(ConstVecRef v);
+
+ private:
+  Vec wbar_;
+  Vec v_;
+  double beta_ = 1.0;
+  Vec lambda_;
+};
+
+/// The product cone in variable order, with whole-vector versions of the cone operations.
+class ConeSet {
+ public:
+  ConeSet() = default;
+  ConeSet(Eigen::Index num_nonneg, const std::vector<Eigen::Index>& soc_dims);
+  Eigen::Index dim() const { return dim_; }
+  Eigen::Index degree() const { return degree_; }
+  const std::vector<std::unique_ptr<Cone>>& cones() const { return cones_; }
+
+  void set_identity(VecRef e) const;
+  bool update_scaling(const Vec& x, const Vec& z);
+  void lambda(Vec& out) const;
+  void mul_W(const Vec& v, Vec& out) const;
+  void mul_Winv(const Vec& v, Vec& out) const;
+  void mul_W2(const Vec& v, Vec& out) const;
+  void jordan_product(const Vec& a, const Vec& b, Vec& out) const;
+  void lambda_divide(const Vec& d, Vec& out) const;
+  double max_step(const Vec& v, const Vec& dv) const;
+  std::vector<ScalingBlock> scaling_blocks() const;
+  void pack_W2(std::vector<double>& out) const;  ///< out must be sized Σ block size²
+
+ private:
+  std::vector<std::unique_ptr<Cone>> cones_;
+  Eigen::Index dim_ = 0;
+  Eigen::Index degree_ = 0;
+};
+
+}  // namespace rbla::conic::detail

@@ -1,0 +1,517 @@
+// Interior-point loop. Homogeneous self-dual embedding (HSDE) of the standard-form pair
+// (Ye, Todd, Mizuno 1994; conic form as in ECOS, Domahidi et al. 2013, and CVXOPT):
+//
+//   A x − b τ = 0,   −Aᵀy + c τ − z = 0,   bᵀy − cᵀx − κ = 0,   x, z ∈ K,  τ, κ ≥ 0.
+//
+// Newton step with NT scaling W (λ = W z = W⁻¹ x) and right-hand sides (η, d, d_κ):
+//   A dx − b dτ = −η r_p,   −Aᵀdy + c dτ − dz = −η r_d,   bᵀdy − cᵀdx − dκ = −η r_g,
+//   λ ∘ (W dz + W⁻¹ dx) = d,   κ dτ + τ dκ = d_κ,
+// with r_p = A x − bτ, r_d = −Aᵀy + cτ − z, r_g = bᵀy − cᵀx − κ. Eliminating dz and dx:
+//   dx = W² (Aᵀdy − c dτ + r₁),   r₁ = W⁻¹(λ \ d) − η r_d,
+//   M dy = −η r_p − A W² r₁ + (A W² c + b) dτ,   M = A W² Aᵀ.
+// Writing dy = p + q dτ with M q = A W² c + b (once per iteration) and M p = −η r_p − A W² r₁,
+// the last two equations give the scalar
+//   dτ = (−η r_g − bᵀp + cᵀW²(Aᵀp + r₁) + d_κ/τ) / (bᵀq − cᵀW²(Aᵀq − c) + κ/τ),
+// whose denominator equals ‖W(Aᵀq − c)‖² + κ/τ > 0.
+// Mehrotra predictor–corrector: predictor η = 1, d = −λ∘λ, d_κ = −τκ; corrector η = 1 − σ,
+// σ = (1 − α_aff)³, d = −λ∘λ − (W⁻¹dx_a)∘(W dz_a) + σμe, d_κ = −τκ − dτ_a dκ_a + σμ.
+
+#include "rbla/conic/solver.hpp"
+
+#include "cone.hpp"
+#include "equilibration.hpp"
+#include "normal_equations.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+
+namespace rbla::conic {
+
+using detail::Vec;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double inf_norm(const Vec& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
+
+/// Quality of the current iterate, measured on the original (unscaled) problem.
+struct Metrics {
+  Vec x, y, z;  // iterate / τ, original units
+  double primal_objective = 0, dual_objective = 0;
+  double gap_abs = 0, gap_rel = 0, res_primal = 0, res_dual = 0;
+  double primal_cert = std::numeric_limits<double>::infinity();  // ‖Aᵀȳ + z̄‖∞ (bᵀȳ = 1)
+  double dual_cert = std::numeric_limits<double>::infinity();    // ‖A x̄‖∞ (cᵀx̄ = −1)
+  Vec y_cert, z_cert, x_cert;
+
+  /// ≤ 1 exactly when meets(tol_feas, tol_gap_abs, tol_gap_rel): how far from converged.
+  double merit(double tol_feas, double tol_gap_abs, double tol_gap_rel) const {
+    return std::max({res_primal / tol_feas, res_dual / tol_feas,
+                     std::min(gap_abs / tol_gap_abs, gap_rel / tol_gap_rel)});
+  }
+
+  bool meets(double tol_feas, double tol_gap_abs, double tol_gap_rel) const {
+    return res_primal <= tol_feas && res_dual <= tol_feas &&
+           (gap_abs <= tol_gap_abs || gap_rel <= tol_gap_rel);
+  }
+};
+
+}  // namespace
+
+struct ConicSolver::Impl {
+  ConicProblem problem;
+  Settings settings;
+  ProgressCallback callback;
+  detail::ConeSet cones;
+  std::vector<detail::ScalingBlock> blocks;
+  detail::Equilibration equilibration;
+  Eigen::SparseMatrix<double> A;  // equilibrated
+  Vec b, c;                        // equilibrated
+  std::vector<bool> is_dense;
+  std::unique_ptr<detail::NormalEquations> normal;
+  std::vector<double> packed_W2;
+  double setup_seconds = 0;
+  double symbolic_seconds = 0;
+
+  Impl(ConicProblem p, Settings s) : problem(std::move(p)), settings(std::move(s)) {
+    const auto start = Clock::now();
+    auto messages = problem.validate();
+    if (!messages.empty()) throw ConicSetupError::from_messages("invalid conic problem", messages);
+    messages = settings.validate();
+    if (!messages.empty()) throw ConicSetupError::from_messages("invalid solver settings", messages);
+    cones = detail::ConeSet(problem.cones.num_nonneg, problem.cones.soc_dims);
+    blocks = cones.scaling_blocks();
+    std::size_t packed_size = 0;
+    for (const auto& blk : blocks) packed_size += static_cast<std::size_t>(blk.size * blk.size);
+    packed_W2.assign(packed_size, 0.0);
+    detect_dense_columns();
+    rescale();
+    const auto symbolic_start = Clock::now();
+    normal = std::make_unique<detail::NormalEquations>(A, blocks, is_dense, settings.ordering);
+    symbolic_seconds = seconds_since(symbolic_start);
+    setup_seconds = seconds_since(start);
+  }
+
+  // Dense columns: see Settings::dense_column_*. Only nonnegative variables qualify, because an
+  // SOC's W² couples its columns and cannot be split off column by column.
+  void detect_dense_columns() {
+    const Eigen::Index n = problem.A.cols();
+    is_dense.assign(static_cast<std::size_t>(n), false);
+    if (!settings.dense_columns || settings.dense_column_max == 0) return;
+    const double mean = static_cast<double>(problem.A.nonZeros()) / static_cast<double>(std::max<Eigen::Index>(n, 1));
+    const double threshold = std::max(static_cast<double>(settings.dense_column_min_nnz),
+                                      settings.dense_column_ratio * mean);
+    std::vector<std::pair<long, Eigen::Index>> candidates;
+    for (Eigen::Index j = 0; j < problem.cones.num_nonneg; ++j) {
+      const long nnz = problem.A.outerIndexPtr()[j + 1] - problem.A.outerIndexPtr()[j];
+      if (static_cast<double>(nnz) >= threshold) candidates.push_back({nnz, j});
+    }
+    std::sort(candidates.begin(), candidates.end(),
+              [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
+    const std::size_t keep = std::min(candidates.size(), static_cast<std::size_t>(settings.dense_column_max));
+    for (std::size_t k = 0; k < keep; ++k) is_dense[static_cast<std::size_t>(candidates[k].second)] = true;
+  }
+
+  // Recomputes the equilibration from the current problem data and refreshes A, b, c.
+  void rescale() {
+    if (settings.equilibrate) {
+      equilibration = detail::ruiz_equilibration(problem.A, problem.b, problem.c, blocks,
+                                                 settings.equilibrate_max_iter,
+                                                 settings.equilibrate_min_scaling,
+                                                 settings.equilibrate_max_scaling);
+    } else {
+      equilibration = detail::identity_equilibration(problem.A.rows(), problem.A.cols());
+    }
+    detail::apply_equilibration(equilibration, problem.A, A);
+    b = equilibration.b_scale * equilibration.row_scale.cwiseProduct(problem.b);
+    c = equilibration.c_scale * equilibration.col_scale.cwiseProduct(problem.c);
+    if (normal) normal->set_A_values(A);
+  }
+
+  Metrics evaluate(const Vec& x, const Vec& y, const Vec& z, double tau) const {
+    const auto& eq = equilibration;
+    Metrics r;
+    const Vec x_hat = eq.col_scale.cwiseProduct(x);      // ∝ x, original units up to 1/(s_b τ)
+    const Vec y_hat = eq.row_scale.cwiseProduct(y);
+    const Vec z_hat = z.cwiseQuotient(eq.col_scale);
+    r.x = x_hat / (eq.b_scale * tau);
+    r.y = y_hat / (eq.c_scale * tau);
+    r.z = z_hat / (eq.c_scale * tau);
+    const auto& P = problem;
+    r.primal_objective = P.c.dot(r.x);
+    r.dual_objective = P.b.dot(r.y);
+    r.gap_abs = std::abs(r.primal_objective - r.dual_objective);
+    r.gap_rel = r.gap_abs / std::max(1.0, std::min(std::abs(r.primal_objective), std::abs(r.dual_objective)));
+    const Vec Ax = P.A * r.x;
+    r.res_primal = inf_norm(Ax - P.b) / std::max(1.0, inf_norm(P.b) + inf_norm(r.x));
+    const Vec Aty = P.A.transpose() * r.y;
+    r.res_dual = inf_norm(Aty + r.z - P.c) /
+                 std::max(1.0, inf_norm(P.c) + inf_norm(r.y) + inf_norm(r.z));
+    const double bty = P.b.dot(y_hat);
+    if (bty > 0) {
+      r.y_cert = y_hat / bty;
+      r.z_cert = z_hat / bty;
+      r.primal_cert = inf_norm(P.A.transpose() * r.y_cert + r.z_cert);
+    }
+    const double ctx = P.c.dot(x_hat);
+    if (ctx < 0) {
+      r.x_cert = x_hat / (-ctx);
+      r.dual_cert = inf_norm(P.A * r.x_cert);
+    }
+    return r;
+  }
+
+  Solution solve();
+};
+
+namespace {
+
+void print_banner(std::ostream& out, const ConicProblem& p, int dense, long nnz_M, long nnz_L,
+                  const std::string& backend) {
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "rbla conic interior point (HSDE, NT scaling, Mehrotra predictor-corrector)\n"
+                "  rows %lld, variables %lld, nnz(A) %lld, nonnegative %lld, second-order cones %zu\n"
+                "  dense columns %d, nnz(M) %ld, nnz(L) %ld, %s\n",
+                static_cast<long long>(p.A.rows()), static_cast<long long>(p.A.cols()),
+                static_cast<long long>(p.A.nonZeros()), static_cast<long long>(p.cones.num_nonneg),
+                p.cones.soc_dims.size(), dense, nnz_M, nnz_L, backend.c_str());
+  out << line
+      << "iter  primal obj       dual obj         gap_rel   res_pri   res_dual  mu        "
+         "tau       kappa     step    sigma   ref\n";
+}
+
+void print_row(std::ostream& out, const IterationRow& r) {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "%4d  %+.9e  %+.9e  %8.2e  %8.2e  %8.2e  %8.2e  %8.2e  %8.2e  %6.4f  %6.4f  %3d\n",
+                r.iteration, r.primal_objective, r.dual_objective, r.gap_rel, r.res_primal,
+                r.res_dual, r.mu, r.tau, r.kappa, r.step, r.sigma, r.refine_steps);
+  out << line;
+}
+
+}  // namespace
+
+Solution ConicSolver::Impl::solve() {
+  const auto start = Clock::now();
+  {
+    const auto messages = settings.validate();
+    if (!messages.empty()) throw ConicSetupError::from_messages("invalid solver settings", messages);
+  }
+  const Settings& s = settings;
+  std::ostream* log = s.verbose ? (s.log_stream ? s.log_stream : &std::cout) : nullptr;
+
+  Info info;
+  info.backend = normal->cholesky().backend_name();
+  info.setup_seconds = setup_seconds;
+  info.symbolic_seconds = symbolic_seconds;
+  info.num_dense_columns = normal->num_dense_columns();
+  info.num_factor_nonzeros = normal->cholesky().factor_nonzeros();
+  if (log) print_banner(*log, problem, info.num_dense_columns, normal->num_matrix_nonzeros(),
+                        info.num_factor_nonzeros, info.backend);
+
+  const Eigen::Index n = A.cols();
+  const Eigen::Index m = A.rows();
+  const double nu = static_cast<double>(cones.degree());
+  Vec x(n), z(n), y = Vec::Zero(m), e(n);
+  cones.set_identity(e);
+  x = e;
+  z = e;
+  double tau = 1.0, kappa = 1.0;
+
+  Vec rp, rd, lambda, W2c, Atq_c, dxq, q, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
+  Vec dx_a, dy_a, dz_a, dx, dy, dz, scaled_dx, scaled_dz, lambda_sq, corr, ep, dp, ddx;
+  double rg = 0;
+  double last_step = 0, last_sigma = 0;
+  int last_refine = 0;
+  Metrics metrics;
+  SolveStatus status = SolveStatus::NumericalFailure;
+  Metrics best_metrics;
+  double best_merit = std::numeric_limits<double>::infinity();
+  int short_steps = 0;
+
+  for (int iter = 0;; ++iter) {
+    rp = A * x - b * tau;
+    rd = -(A.transpose() * y) + c * tau - z;
+    rg = b.dot(y) - c.dot(x) - kappa;
+    const double mu = (x.dot(z) + tau * kappa) / (nu + 1.0);
+    // Accuracy the Newton directions need: a step of length α leaves (1 − αη) r_p + α e_p, so an
+    // error e_p ≤ 1e-3 ‖r_p‖ is as good as exact; the absolute floor decides the last iterations.
+    const double refine_target =
+        std::max(s.refine_tol_rel * (1.0 + inf_norm(b) * tau), 1e-3 * inf_norm(rp));
+
+    metrics = evaluate(x, y, z, tau);
+    // Late iterations of degenerate problems can lose accuracy; the best iterate is kept for the
+    // reduced-accuracy fallback.
+    const double merit = metrics.merit(s.tol_feas, s.tol_gap_abs, s.tol_gap_rel);
+    if (!(merit >= best_merit)) {
+      best_merit = merit;
+      best_metrics = metrics;
+    }
+    IterationRow row;
+    row.iteration = iter;
+    row.primal_objective = metrics.primal_objective;
+    row.dual_objective = metrics.dual_objective;
+    row.gap_rel = metrics.gap_rel;
+    row.res_primal = metrics.res_primal;
+    row.res_dual = metrics.res_dual;
+    row.mu = mu;
+    row.tau = tau;
+    row.kappa = kappa;
+    row.step = last_step;
+    row.sigma = last_sigma;
+    row.refine_steps = last_refine;
+    row.elapsed_seconds = seconds_since(start);
+    info.history.push_back(row);
+    info.iterations = iter;
+    if (log) print_row(*log, row);
+
+    if (metrics.meets(s.tol_feas, s.tol_gap_abs, s.tol_gap_rel)) {
+      status = SolveStatus::Solved;
+      break;
+    }
+    if (metrics.primal_cert <= s.tol_infeas) {
+      status = SolveStatus::PrimalInfeasible;
+      break;
+    }
+    if (metrics.dual_cert <= s.tol_infeas) {
+      status = SolveStatus::DualInfeasible;
+      break;
+    }
+    if (!std::isfinite(mu) || !std::isfinite(tau) || !std::isfinite(kappa)) {
+      status = SolveStatus::NumericalFailure;
+      break;
+    }
+    if (iter >= s.max_iter) {
+      status = SolveStatus::IterationLimit;
+      break;
+    }
+    if (seconds_since(start) >= s.time_limit_seconds) {
+      status = SolveStatus::TimeLimit;
+      break;
+    }
+    if (callback && !callback(row)) {
+      status = SolveStatus::Cancelled;
+      break;
+    }
+
+    // ---- Scaling and factorisation ----
+    if (!cones.update_scaling(x, z)) {
+      status = SolveStatus::NumericalFailure;
+      break;
+    }
+    cones.lambda(lambda);
+    cones.pack_W2(packed_W2);
+    const detail::FactorReport report =
+        normal->factor(packed_W2, s.reg_static, s.reg_retry_factor, s.reg_max_retries);
+    info.assembly_seconds += report.assembly_seconds;
+    info.factor_seconds += report.factor_seconds;
+    info.num_refactor_retries += report.retries;
+    if (!report.ok) {
+      status = SolveStatus::NumericalFailure;
+      break;
+    }
+
+    const auto solve_start = Clock::now();
+    int refine_steps = 0;
+    // M q = A W² c + b, and the dτ denominator.
+    cones.mul_W2(c, W2c);
+    rhs = A * W2c + b;
+    // q's error shows up in the directions' primal and gap residuals, which are refined below.
+    refine_steps += normal->solve(rhs, q, s.refine_max_iter, refine_target);
+    Atq_c = A.transpose() * q - c;
+    cones.mul_W2(Atq_c, dxq);
+    const double denominator = b.dot(q) - c.dot(dxq) + kappa / tau;
+
+    // Solves the Newton system for (η, d, d_κ); see the header comment.
+    auto direction = [&](double eta, const Vec& d, double d_kappa, Vec& out_dx, Vec& out_dy,
+                         Vec& out_dz, double& out_dtau, double& out_dkappa) {
+      cones.lambda_divide(d, ds_tilde);
+      cones.mul_Winv(ds_tilde, r1);
+      r1 -= eta * rd;
+      cones.mul_W2(r1, tmp);
+      rhs = -eta * rp - A * tmp;
+      refine_steps += normal->solve(rhs, p, s.refine_max_iter, refine_target);
+      tmp = A.transpose() * p + r1;
+      cones.mul_W2(tmp, out_dx);
+      out_dtau = (-eta * rg - b.dot(p) + c.dot(out_dx) + d_kappa / tau) / denominator;
+      out_dy = p + q * out_dtau;
+      out_dx += dxq * out_dtau;
+      out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
+      out_dkappa = (d_kappa - kappa * out_dtau) / tau;
+      // Refinement on the unreduced residuals: the normal equations lose accuracy through the
+      // cancellation in A W² (Aᵀp + r₁) when W² is ill-conditioned (late iterations), so the
+      // error of the primal equation  e_p = A dx − b dτ + η r_p  is measured directly (A dx is
+      // accurate) and corrected by the same elimination with right-hand side (−e_p, 0, −e_g, 0).
+      // dx and dz are updated incrementally, which keeps W dz + W⁻¹dx unchanged.
+      double previous = std::numeric_limits<double>::infinity();
+      for (int pass = 0; pass < s.refine_max_iter; ++pass) {
+        ep = A * out_dx - b * out_dtau + eta * rp;
+        const double eg = b.dot(out_dy) - c.dot(out_dx) - out_dkappa + eta * rg;
+        const double error = std::max(inf_norm(ep), std::abs(eg));
+        if (error <= refine_target || !(error < 0.5 * previous)) break;
+        previous = error;
+        ep = -ep;
+        refine_steps += 1 + normal->solve(ep, dp, s.refine_max_iter, refine_target);
+        tmp = A.transpose() * dp;
+        cones.mul_W2(tmp, ddx);
+        const double ddtau = (-eg - b.dot(dp) + c.dot(ddx)) / denominator;
+        out_dy += dp + q * ddtau;
+        out_dx += ddx + dxq * ddtau;
+        out_dtau += ddtau;
+        out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
+        out_dkappa = (d_kappa - kappa * out_dtau) / tau;
+      }
+    };
+    // Largest step keeping x, z in K and τ, κ ≥ 0, measured in the scaled space around λ.
+    auto max_step = [&](const Vec& ddx, const Vec& ddz, double dtau, double dkappa) {
+      cones.mul_Winv(ddx, scaled_dx);
+      cones.mul_W(ddz, scaled_dz);
+      double alpha = std::min(cones.max_step(lambda, scaled_dx), cones.max_step(lambda, scaled_dz));
+      if (dtau < 0) alpha = std::min(alpha, -tau / dtau);
+      if (dkappa < 0) alpha = std::min(alpha, -kappa / dkappa);
+      return alpha;
+    };
+
+    // ---- Predictor (affine scaling) ----
+    cones.jordan_product(lambda, lambda, lambda_sq);
+    ds = -lambda_sq;
+    double dtau_a = 0, dkappa_a = 0;
+    direction(1.0, ds, -tau * kappa, dx_a, dy_a, dz_a, dtau_a, dkappa_a);
+    const double alpha_aff = std::min(1.0, max_step(dx_a, dz_a, dtau_a, dkappa_a));
+    const double sigma = std::clamp(std::pow(1.0 - alpha_aff, 3), 0.0, 1.0);
+
+    // ---- Corrector (Mehrotra second-order term + centring) ----
+    cones.mul_Winv(dx_a, scaled_dx);
+    cones.mul_W(dz_a, scaled_dz);
+    cones.jordan_product(scaled_dx, scaled_dz, corr);
+    ds = -lambda_sq - corr + (sigma * mu) * e;
+    double dtau = 0, dkappa = 0;
+    direction(1.0 - sigma, ds, -tau * kappa - dtau_a * dkappa_a + sigma * mu, dx, dy, dz, dtau, dkappa);
+    const double alpha = std::min(1.0, s.step_fraction * max_step(dx, dz, dtau, dkappa));
+    info.solve_seconds += seconds_since(solve_start);
+
+    short_steps = alpha < s.stall_step ? short_steps + 1 : 0;
+    if (!(alpha >= s.step_min) || short_steps > s.stall_max_iter) {
+      status = SolveStatus::NumericalFailure;  // stalled
+      break;
+    }
+    x += alpha * dx;
+    y += alpha * dy;
+    z += alpha * dz;
+    tau += alpha * dtau;
+    kappa += alpha * dkappa;
+    last_step = alpha;
+    last_sigma = sigma;
+    last_refine = refine_steps;
+  }
+
+  // Reduced-accuracy fallback for runs that stopped without meeting the tolerances.
+  if (status == SolveStatus::IterationLimit || status == SolveStatus::TimeLimit ||
+      status == SolveStatus::NumericalFailure) {
+    if (best_metrics.meets(s.reduced_tol_feas, s.reduced_tol_gap_abs, s.reduced_tol_gap_rel)) {
+      status = SolveStatus::SolvedInaccurate;
+      metrics = best_metrics;
+    }
+  }
+
+  Solution solution;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  switch (status) {
+    case SolveStatus::PrimalInfeasible:
+      solution.x = Vec::Constant(n, nan);
+      solution.y = metrics.y_cert;
+      solution.z = metrics.z_cert;
+      info.certificate_residual = metrics.primal_cert;
+      break;
+    case SolveStatus::DualInfeasible:
+      solution.x = metrics.x_cert;
+      solution.y = Vec::Constant(m, nan);
+      solution.z = Vec::Constant(n, nan);
+      info.certificate_residual = metrics.dual_cert;
+      break;
+    case SolveStatus::Solved:
+    case SolveStatus::SolvedInaccurate:
+    case SolveStatus::IterationLimit:
+    case SolveStatus::TimeLimit:
+    case SolveStatus::NumericalFailure:
+    case SolveStatus::Cancelled:
+      solution.x = metrics.x;
+      solution.y = metrics.y;
+      solution.z = metrics.z;
+      break;
+  }
+  info.status = status;
+  info.primal_objective = metrics.primal_objective;
+  info.dual_objective = metrics.dual_objective;
+  info.gap_abs = metrics.gap_abs;
+  info.gap_rel = metrics.gap_rel;
+  info.res_primal = metrics.res_primal;
+  info.res_dual = metrics.res_dual;
+  info.step = last_step;
+  info.total_seconds = seconds_since(start);
+  if (log) {
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "status: %s\niterations %d, primal %.12g, dual %.12g\n"
+                  "time [s]: setup %.3f (symbolic %.3f), assembly %.3f, factor %.3f, solve %.3f, "
+                  "total %.3f; refactor retries %d\n",
+                  to_string(status), info.iterations, info.primal_objective, info.dual_objective,
+                  info.setup_seconds, info.symbolic_seconds, info.assembly_seconds,
+                  info.factor_seconds, info.solve_seconds, info.total_seconds,
+                  info.num_refactor_retries);
+    *log << line;
+  }
+  solution.info = std::move(info);
+  return solution;
+}
+
+// ---- Public wrapper ----
+
+ConicSolver::ConicSolver(ConicProblem problem, Settings settings)
+    : impl_(std::make_unique<Impl>(std::move(problem), std::move(settings))) {}
+ConicSolver::~ConicSolver() = default;
+ConicSolver::ConicSolver(ConicSolver&&) noexcept = default;
+ConicSolver& ConicSolver::operator=(ConicSolver&&) noexcept = default;
+
+Solution ConicSolver::solve() { return impl_->solve(); }
+
+void ConicSolver::update_b(const Eigen::VectorXd& b) {
+  if (b.size() != impl_->problem.b.size()) throw ConicSetupError("update_b: wrong length");
+  if (!b.allFinite()) throw ConicSetupError("update_b: b is not finite");
+  impl_->problem.b = b;
+  impl_->rescale();
+}
+
+void ConicSolver::update_c(const Eigen::VectorXd& c) {
+  if (c.size() != impl_->problem.c.size()) throw ConicSetupError("update_c: wrong length");
+  if (!c.allFinite()) throw ConicSetupError("update_c: c is not finite");
+  impl_->problem.c = c;
+  impl_->rescale();
+}
+
+void ConicSolver::update_A_values(const Eigen::VectorXd& values) {
+  auto& A = impl_->problem.A;
+  if (values.size() != A.nonZeros()) throw ConicSetupError("update_A_values: wrong length");
+  if (!values.allFinite()) throw ConicSetupError("update_A_values: values are not finite");
+  std::copy(values.data(), values.data() + values.size(), A.valuePtr());
+  impl_->rescale();
+}
+
+void ConicSolver::set_progress_callback(ProgressCallback callback) { impl_->callback = std::move(callback); }
+Settings& ConicSolver::settings() { return impl_->settings; }
+const ConicProblem& ConicSolver::problem() const { return impl_->problem; }
+int ConicSolver::num_symbolic_analyses() const { return impl_->normal->cholesky().num_analyses(); }
+
+Solution solve(const ConicProblem& problem, const Settings& settings) {
+  return ConicSolver(problem, settings).solve();
+}
+
+}  // namespace rbla::conic

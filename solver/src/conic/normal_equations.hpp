@@ -1,0 +1,93 @@
+#pragma once
+// Normal equations of the scaled Newton system:  M dy = r,  M = A W² Aᵀ = Σ_blocks A_k W²_k A_kᵀ,
+// where block k is one SOC (dense q×q W²) or one nonnegative variable (scalar W²).
+//
+// The pattern of M (lower triangle) is built once; each block keeps its rows R_k, a dense copy of
+// its columns A_k (|R_k|×q) and the positions of its r(r+1)/2 contributions in M's value array,
+// so assembly only overwrites values (Clarabel's `datamaps` idea).
+//
+// Dense columns (nonnegative variables with many nonzeros, e.g. a load multiplier touching every
+// equilibrium row) are kept out of M: with M_s the sparse part, D the dense columns and
+// d = diag(W²) over them, M = M_s + D diag(d) Dᵀ is solved by the bordered system
+//   [M_s  D; Dᵀ −diag(1/d)] [dy; w] = [r; 0]
+// ⇒ (Dᵀ M_s⁻¹ D + diag(1/d)) w = Dᵀ M_s⁻¹ r,  dy = M_s⁻¹ (r − D w)   (Schur complement, k×k).
+// This form stays well defined when d → 0 or d → ∞ (unlike Sherman–Morrison–Woodbury in d).
+//
+// M_s is factored as M_s + δI (δ = static regularisation, raised on failure); each solve is
+// then refined on the exact, unregularised M (applied as A (W² (Aᵀ v)), never formed).
+
+#include "cone.hpp"
+#include "sparse_cholesky.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace rbla::conic::detail {
+
+struct FactorReport {
+  bool ok = false;
+  int retries = 0;
+  double shift = 0;
+  double assembly_seconds = 0;
+  double factor_seconds = 0;
+};
+
+class NormalEquations {
+ public:
+  NormalEquations(const Eigen::SparseMatrix<double>& A, const std::vector<ScalingBlock>& blocks,
+                  const std::vector<bool>& is_dense_column, Ordering ordering);
+
+  /// New values of A with the same pattern (the symbolic factorisation is kept).
+  void set_A_values(const Eigen::SparseMatrix<double>& A);
+
+  /// Assembles M_s from the packed W² blocks (ConeSet::pack_W2 order) and factors it.
+  FactorReport factor(const std::vector<double>& packed_W2, double reg_static,
+                      double reg_retry_factor, int reg_max_retries);
+
+  /// Solves M dy = rhs with the last factor, then preconditioned CG on the exact M until
+  /// ‖rhs − M dy‖∞ ≤ target or refine_max_iter steps; returns the CG steps taken.
+  int solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& dy, int refine_max_iter, double target);
+
+  /// out = M v with the exact M of the last factor() call (all blocks, no regularisation).
+  void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
+
+  int num_dense_columns() const { return static_cast<int>(dense_blocks_.size()); }
+  long num_matrix_nonzeros() const { return static_cast<long>(row_ind_.size()); }
+  SparseCholesky& cholesky() { return cholesky_; }
+
+ private:
+  void solve_regularised(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
+
+  struct BlockData {
+    Eigen::Index first_col = 0;
+    int size = 0;
+    std::vector<int> rows;         // R_k, ascending
+    std::size_t a_offset = 0;      // into local_A_: |R_k|×size, column-major
+    std::size_t w2_offset = 0;     // into packed W²
+    std::size_t map_offset = 0;    // into value_map_: r(r+1)/2 positions (column b, rows a ≥ b)
+    bool dense = false;
+  };
+
+  Eigen::Index m_ = 0;
+  std::vector<BlockData> blocks_;
+  std::vector<int> dense_blocks_;     // indices into blocks_
+  std::vector<double> local_A_;
+  std::vector<int> nnz_to_local_;     // A.valuePtr()[p] → local_A_ index
+  std::vector<int> value_map_;
+  std::vector<int> col_ptr_, row_ind_;  // lower triangle of M_s
+  std::vector<int> diag_pos_;
+  std::vector<double> values_;
+  std::vector<double> packed_W2_;     // copy from the last factor() (for multiply)
+  std::vector<double> scratch_;
+  SparseCholesky cholesky_;
+  double shift_ = 0;
+
+  // Dense-column Schur complement data, refreshed per factorisation.
+  Eigen::MatrixXd dense_D_;        // m × k
+  Eigen::MatrixXd dense_Minv_D_;   // M_s⁻¹ D
+  Eigen::LDLT<Eigen::MatrixXd> dense_schur_;
+};
+
+}  // namespace rbla::conic::detail

@@ -1,0 +1,122 @@
+#include "sparse_cholesky.hpp"
+
+#include "rbla/conic/problem.hpp"
+
+#include <cholmod.h>
+
+#include <cstring>
+
+namespace rbla::conic::detail {
+
+struct SparseCholesky::Impl {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  cholmod_sparse matrix{};  // header only: points at the caller's arrays
+  cholmod_dense* solution = nullptr;
+  cholmod_dense* work_y = nullptr;
+  cholmod_dense* work_e = nullptr;
+  Ordering ordering;
+  int n = 0;
+};
+
+SparseCholesky::SparseCholesky(Ordering ordering) : impl_(std::make_unique<Impl>()) {
+  impl_->ordering = ordering;
+  cholmod_start(&impl_->common);
+  cholmod_common& c = impl_->common;
+  c.print = 0;  // "not positive definite" is an expected outcome here, handled by the caller
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  switch (ordering) {
+    case Ordering::Amd:
+      c.nmethods = 1;
+      c.method[0].ordering = CHOLMOD_AMD;
+      break;
+    case Ordering::Metis:
+      c.nmethods = 1;
+      c.method[0].ordering = CHOLMOD_METIS;
+      break;
+    case Ordering::CholmodDefault:
+      break;
+  }
+  c.postorder = 1;
+}
+
+SparseCholesky::~SparseCholesky() {
+  cholmod_common& c = impl_->common;
+  if (impl_->factor) cholmod_free_factor(&impl_->factor, &c);
+  if (impl_->solution) cholmod_free_dense(&impl_->solution, &c);
+  if (impl_->work_y) cholmod_free_dense(&impl_->work_y, &c);
+  if (impl_->work_e) cholmod_free_dense(&impl_->work_e, &c);
+  cholmod_finish(&c);
+}
+
+void SparseCholesky::analyze(int n, const int* col_ptr, const int* row_ind) {
+  cholmod_common& c = impl_->common;
+  if (impl_->factor) cholmod_free_factor(&impl_->factor, &c);
+  impl_->n = n;
+  ++num_analyses_;
+  if (n == 0) return;  // no equality rows: nothing to factor
+  cholmod_sparse& a = impl_->matrix;
+  std::memset(&a, 0, sizeof a);
+  a.nrow = static_cast<size_t>(n);
+  a.ncol = static_cast<size_t>(n);
+  a.nzmax = static_cast<size_t>(col_ptr[n]);
+  a.p = const_cast<int*>(col_ptr);
+  a.i = const_cast<int*>(row_ind);
+  a.x = nullptr;
+  a.stype = -1;  // lower triangle stored
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_PATTERN;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  impl_->factor = cholmod_analyze(&a, &c);
+  if (!impl_->factor || c.status < CHOLMOD_OK) {
+    throw ConicSetupError("CHOLMOD symbolic analysis failed (status " + std::to_string(c.status) + ")");
+  }
+}
+
+bool SparseCholesky::factorize(const double* values, double shift) {
+  if (impl_->n == 0) return true;
+  cholmod_common& c = impl_->common;
+  cholmod_sparse& a = impl_->matrix;
+  a.x = const_cast<double*>(values);
+  a.xtype = CHOLMOD_REAL;
+  double beta[2] = {shift, 0.0};
+  const int ok = cholmod_factorize_p(&a, beta, nullptr, 0, impl_->factor, &c);
+  a.xtype = CHOLMOD_PATTERN;
+  a.x = nullptr;
+  if (!ok || c.status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
+    return false;
+  }
+  return c.status >= CHOLMOD_OK;
+}
+
+void SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
+  if (impl_->n == 0) {
+    out.resize(0);
+    return;
+  }
+  cholmod_common& c = impl_->common;
+  cholmod_dense b{};
+  b.nrow = static_cast<size_t>(impl_->n);
+  b.ncol = 1;
+  b.nzmax = b.nrow;
+  b.d = b.nrow;
+  b.x = const_cast<double*>(rhs.data());
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_solve2(CHOLMOD_A, impl_->factor, &b, nullptr, &impl_->solution, nullptr, &impl_->work_y,
+                 &impl_->work_e, &c);
+  out = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(impl_->solution->x), impl_->n);
+}
+
+long SparseCholesky::factor_nonzeros() const {
+  const cholmod_common& c = impl_->common;
+  return static_cast<long>(c.lnz);
+}
+
+std::string SparseCholesky::backend_name() const {
+  return std::string("CHOLMOD supernodal LL' (") + to_string(impl_->ordering) + ")";
+}
+
+}  // namespace rbla::conic::detail

@@ -1,0 +1,42 @@
+#pragma once
+// CHOLMOD supernodal LLᵀ of a symmetric positive definite matrix given by its lower triangle
+// (CSC). Symbolic analysis (fill-reducing ordering + supernodal structure) is done once per
+// pattern; each numeric factorisation reuses it (Ceres' SparseCholesky idea).
+
+#include "rbla/conic/settings.hpp"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rbla::conic::detail {
+
+class SparseCholesky {
+ public:
+  explicit SparseCholesky(Ordering ordering);
+  ~SparseCholesky();
+  SparseCholesky(const SparseCholesky&) = delete;
+  SparseCholesky& operator=(const SparseCholesky&) = delete;
+
+  /// Pattern of the lower triangle, sorted row indices per column; the arrays must stay alive
+  /// (and unchanged) while this object is used.
+  void analyze(int n, const int* col_ptr, const int* row_ind);
+  /// Factors (M + shift·I) with M's lower-triangle values in the pattern's order. False if
+  /// CHOLMOD reports that the matrix is not positive definite (the caller then retries).
+  bool factorize(const double* values, double shift);
+  /// out = (M + shift·I)⁻¹ rhs with the last successful factor.
+  void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
+
+  long factor_nonzeros() const;
+  std::string backend_name() const;
+  int num_analyses() const { return num_analyses_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  int num_analyses_ = 0;
+};
+
+}  // namespace rbla::conic::detail

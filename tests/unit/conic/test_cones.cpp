@@ -1,0 +1,90 @@
+// Identities of the cone operations (NT scaling, Jordan algebra, step to the boundary).
+#include "../../../solver/src/conic/cone.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace rbla::conic::detail;
+
+namespace {
+
+Vec random_interior_soc(std::mt19937& rng, int q, double margin) {
+  std::normal_distribution<double> normal;
+  Vec v(q);
+  for (int i = 1; i < q; ++i) v[i] = normal(rng);
+  v[0] = v.tail(q - 1).norm() + margin;
+  return v;
+}
+
+}  // namespace
+
+TEST(ConicCones, SocNesterovToddScalingIdentities) {
+  std::mt19937 rng(7);
+  for (int q : {2, 3, 5}) {
+    for (double margin : {1.0, 1e-3, 1e-6}) {
+      SecondOrderCone cone(0, q);
+      const Vec x = random_interior_soc(rng, q, margin);
+      const Vec z = random_interior_soc(rng, q, 0.5);
+      ASSERT_TRUE(cone.update_scaling(x, z));
+      Vec lambda(q), wz(q), winv_x(q), back(q), w2v(q), wwv(q), tmp(q);
+      cone.lambda(lambda);
+      cone.mul_W(z, wz);
+      cone.mul_Winv(x, winv_x);
+      const double scale = x.norm() + z.norm();
+      EXPECT_LT((wz - lambda).norm(), 1e-9 * scale) << "q=" << q << " margin=" << margin;
+      EXPECT_LT((winv_x - lambda).norm(), 1e-9 * scale) << "q=" << q << " margin=" << margin;
+      // W W⁻¹ = I, W² (dense, packed) = W W.
+      const Vec v = random_interior_soc(rng, q, 0.1) - random_interior_soc(rng, q, 0.2);
+      cone.mul_Winv(v, tmp);
+      cone.mul_W(tmp, back);
+      EXPECT_LT((back - v).norm(), 1e-9 * v.norm());
+      std::vector<double> packed(static_cast<std::size_t>(q * q));
+      cone.pack_W2(packed.data());
+      w2v = Eigen::Map<Eigen::MatrixXd>(packed.data(), q, q) * v;
+      cone.mul_W(v, tmp);
+      cone.mul_W(tmp, wwv);
+      EXPECT_LT((w2v - wwv).norm(), 1e-9 * (1 + wwv.norm()));
+      // λ ∘ (λ \ d) = d.
+      Vec divided(q), product(q);
+      cone.lambda_divide(v, divided);
+      cone.jordan_product(lambda, divided, product);
+      EXPECT_LT((product - v).norm(), 1e-8 * (1 + v.norm()));
+    }
+  }
+}
+
+TEST(ConicCones, SocMaxStepMatchesBisection) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 50; ++trial) {
+    const int q = 2 + trial % 4;
+    SecondOrderCone cone(0, q);
+    const Vec v = random_interior_soc(rng, q, 0.3);
+    Vec d(q);
+    for (int i = 0; i < q; ++i) d[i] = normal(rng);
+    const double step = cone.max_step(v, d);
+    auto inside = [&](double a) { return SecondOrderCone::jordan_norm(v + a * d) > 0; };
+    if (std::isinf(step)) {
+      EXPECT_TRUE(inside(1e6));
+      continue;
+    }
+    EXPECT_TRUE(inside(step * (1 - 1e-9)));
+    EXPECT_FALSE(inside(step * (1 + 1e-6)));
+  }
+}
+
+TEST(ConicCones, NonnegativeScalingAndStep) {
+  NonnegativeCone cone(0, 3);
+  const Vec x = (Vec(3) << 1.0, 4.0, 1e-6).finished();
+  const Vec z = (Vec(3) << 4.0, 1.0, 1e2).finished();
+  ASSERT_TRUE(cone.update_scaling(x, z));
+  Vec lambda(3), wz(3);
+  cone.lambda(lambda);
+  cone.mul_W(z, wz);
+  EXPECT_NEAR((wz - lambda).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(lambda[0], 2.0, 1e-14);
+  const Vec d = (Vec(3) << -2.0, 1.0, -1e-6).finished();
+  EXPECT_DOUBLE_EQ(cone.max_step(x, d), 0.5);
+  EXPECT_FALSE(cone.update_scaling(-x, z));
+}

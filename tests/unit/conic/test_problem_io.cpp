@@ -1,0 +1,96 @@
+// CBF round trip, and an MPS dump solved by an independent LP solver (COIN-OR Clp) if present.
+#include "rbla/conic/io.hpp"
+#include "rbla/conic/solver.hpp"
+#include "random_problem.hpp"
+#include "test_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+using namespace rbla::conic;
+using namespace rbla::conic::testing;
+
+namespace {
+
+bool same_problem(const ConicProblem& a, const ConicProblem& b) {
+  return a.A.rows() == b.A.rows() && a.A.cols() == b.A.cols() &&
+         Eigen::MatrixXd(a.A) == Eigen::MatrixXd(b.A) && a.b == b.b && a.c == b.c &&
+         a.cones.num_nonneg == b.cones.num_nonneg && a.cones.soc_dims == b.cones.soc_dims;
+}
+
+std::filesystem::path temp_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("rbla_conic_" + std::to_string(::getpid()) + "_" + name);
+}
+
+}  // namespace
+
+TEST(ConicProblemIo, CbfRoundTripIsExact) {
+  RandomProblemOptions o;
+  o.rows = 20;
+  o.num_nonneg = 15;
+  o.num_soc3 = 10;
+  const ConicProblem p = random_feasible_problem(o);
+  std::stringstream text;
+  write_cbf(p, text);
+  const ConicProblem q = read_cbf(text);
+  EXPECT_TRUE(same_problem(p, q));
+}
+
+TEST(ConicProblemIo, CbfUsesTheAxPlusBConvention) {
+  const ConicProblem p = make_problem(2, 3, {0, 1, 0, 0, 0, 1}, {3, 4}, {1, 0, 0}, 0, {3});
+  std::stringstream text;
+  write_cbf(p, text);
+  const std::string s = text.str();
+  EXPECT_NE(s.find("VAR\n3 1\nQ 3\n"), std::string::npos) << s;
+  EXPECT_NE(s.find("CON\n2 1\nL= 2\n"), std::string::npos) << s;
+  EXPECT_NE(s.find("BCOORD\n2\n0 -3\n1 -4\n"), std::string::npos) << s;
+  // The re-read problem has the same optimum (5).
+  const Solution sol = solve(read_cbf(text));
+  ASSERT_EQ(sol.info.status, SolveStatus::Solved);
+  EXPECT_NEAR(sol.info.primal_objective, 5.0, 1e-7);
+}
+
+TEST(ConicProblemIo, CbfReaderRejectsWhatItDoesNotSupport) {
+  std::stringstream psd("VER\n3\nPSDVAR\n1\n2\n");
+  EXPECT_THROW(read_cbf(psd), ConicSetupError);
+  std::stringstream inequality("VER\n3\nVAR\n1 1\nL+ 1\nCON\n1 1\nL+ 1\n");
+  EXPECT_THROW(read_cbf(inequality), ConicSetupError);
+}
+
+TEST(ConicProblemIo, MpsRefusesSecondOrderCones) {
+  const ConicProblem p = make_problem(1, 3, {1, 0, 0}, {1}, {0, -1, -1}, 0, {3});
+  std::stringstream text;
+  EXPECT_THROW(write_mps(p, text), ConicSetupError);
+}
+
+TEST(ConicProblemIo, MpsDumpSolvedByClpMatches) {
+  if (std::system("command -v clp > /dev/null 2>&1") != 0) GTEST_SKIP() << "clp not on PATH";
+  RandomProblemOptions o;
+  o.rows = 40;
+  o.num_nonneg = 120;
+  o.num_soc3 = 0;
+  o.seed = 4;
+  const ConicProblem p = random_feasible_problem(o);
+  const auto mps = temp_path("lp.mps");
+  const auto out = temp_path("lp.sol");
+  write_mps(p, mps.string());
+  const std::string command = "clp " + mps.string() + " -primalS -solu " + out.string() + " > /dev/null 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream solution(out);
+  std::string first_line;
+  std::getline(solution, first_line);
+  ASSERT_NE(first_line.find("Optimal"), std::string::npos) << first_line;
+  const double clp_objective = std::stod(first_line.substr(first_line.rfind(' ') + 1));
+  std::filesystem::remove(mps);
+  std::filesystem::remove(out);
+
+  const Solution sol = solve(p);
+  ASSERT_EQ(sol.info.status, SolveStatus::Solved);
+  EXPECT_NEAR(sol.info.primal_objective, clp_objective, 1e-6 * std::max(1.0, std::abs(clp_objective)));
+}

@@ -1,0 +1,83 @@
+// Shared helpers of the validation tests: build a model JSON, run the whole pipeline on it.
+#pragma once
+
+#include "analysis/limit_analysis.hpp"
+#include "io/load_model.hpp"
+#include "support/model_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace rbla::validation {
+
+using nlohmann::json;
+using rbla::analysis::AnalysisResult;
+using rbla::analysis::Verdict;
+using namespace rbla::testing;
+
+/// The model stage and the analysis, exactly as the CLI runs them.
+inline AnalysisResult run(const json& model) {
+  const auto loaded = rbla::io::load_model_text(model.dump());
+  return rbla::analysis::analyse(loaded.model);
+}
+
+inline double relative_error(double got, double expected) {
+  return std::abs(got - expected) / std::max(std::abs(expected), 1e-300);
+}
+
+/// Options of a load-multiplier analysis.
+struct Setup {
+  double mu = 0.6;
+  double unit_weight = 18.0;
+  std::string friction_model = "associative";
+  std::string formulation = "auto";
+  std::string cone = "exact";
+  int pyramid_faces = 8;
+  json seismic_direction = json::array({1.0, 0.0, 0.0});
+};
+
+inline json analysis_of(const Setup& s) {
+  json a = {{"type", "load_multiplier"},
+            {"friction_model", s.friction_model},
+            {"formulation", s.formulation},
+            {"cone", s.cone},
+            {"pyramid_faces", s.pyramid_faces},
+            // Tight non-associative stopping so converged values are comparable to closed forms.
+            {"non_associative", {{"max_iterations", 200}, {"tolerance", 1e-9}}}};
+  if (!s.seismic_direction.is_null()) a["seismic"] = {{"direction", s.seismic_direction}};
+  return a;
+}
+
+inline json finish(json blocks, const Setup& s) {
+  json model = model_with(std::move(blocks));
+  model["defaults"] = {{"unit_weight", s.unit_weight}, {"friction", s.mu}};
+  model["analysis"] = analysis_of(s);
+  return model;
+}
+
+/// A free block [0,b]x[0,depth]x[0,h] on a wider fixed base.
+inline json single_block(double b, double h, const Setup& s, double depth = 1.0) {
+  json blocks = json::array({box_block("base", -0.5, -0.5, -0.5, b + 0.5, depth + 0.5, 0.0, "fixed"),
+                             box_block("B", 0.0, 0.0, 0.0, b, depth, h)});
+  return finish(blocks, s);
+}
+
+/// A column of n equal blocks, b wide, total height H, on a fixed base.
+inline json column(int n, double b, double H, const Setup& s, double depth = 1.0) {
+  json blocks = json::array({box_block("base", -0.5, -0.5, -0.5, b + 0.5, depth + 0.5, 0.0, "fixed")});
+  for (int i = 0; i < n; ++i) {
+    blocks.push_back(box_block("C" + std::to_string(i), 0.0, 0.0, H * i / n, b, depth, H * (i + 1) / n));
+  }
+  return finish(blocks, s);
+}
+
+/// Collapse expected: returns alpha (0 when none, after recording a failure).
+inline double alpha_of(const AnalysisResult& r) {
+  EXPECT_EQ(r.verdict, Verdict::Collapse) << r.verdict_text;
+  EXPECT_TRUE(r.load_multiplier.has_value());
+  return r.load_multiplier.value_or(0.0);
+}
+
+}  // namespace rbla::validation
