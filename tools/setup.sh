@@ -6,5 +6,5 @@ cd "$(dirname "$0")/.."
 tools/install_deps.sh
 tools/build.sh
 mkdir -p out
-./build/solver/rbla info samples/wall_opening.json -o out/wall_opening.info.json
-echo "setup: wrote out/wall_opening.info.json"
+./build/solver/rbla solve samples/wall_opening.json -o out/wall_opening.result.json --svg out/wall_opening
+echo "setup: wrote out/wall_opening.result.json and the pictures in out/wall_opening/"

@@ -125,3 +125,36 @@ TEST_F(Cli, ReadsStandardInput) {
   const auto r = run("validate - < " + write("m.json", box_model()));
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
+
+TEST_F(Cli, SolvePrintsTheVerdictAndWritesResultAndPictures) {
+  const std::string model = write("m.json", box_model(R"("analysis": {"seismic": {"direction": [1, 0, 0]}}, )"));
+  const auto r = run("solve " + model + " -o " + path("result.json") + " --svg " + path("pictures"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  // One block 1 x 1 x 2 on a base: alpha = min(b/h, mu) = 0.5.
+  EXPECT_NE(r.output.find("Collapse at load multiplier alpha = 0.5"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(path("result.json")));
+  EXPECT_GT(fs::file_size(path("pictures/mechanism.svg")), 0u);
+  EXPECT_GT(fs::file_size(path("pictures/convergence.svg")), 0u);
+}
+
+TEST_F(Cli, CannotStandIsAnAnswerNotAnError) {
+  std::string model = box_model();
+  // Lift the block 1 m off the base: nothing holds it.
+  for (const char* from : {"[0,0,0]", "[1,0,0]", "[1,1,0]", "[0,1,0]"}) {
+    const auto at = model.find(from, model.find("\"B1\""));
+    model.replace(at, std::string(from).size(), std::string(from).substr(0, std::string(from).size() - 2) + "1]");
+  }
+  const auto r = run("solve " + write("m.json", model) + " -o " + path("result.json"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Cannot stand under dead load alone: 1 blocks fall"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, DumpProblemWritesAnMpsForThePlanarLp) {
+  const auto r = run("solve -q " + write("m.json", box_model()) + " --dump-problem " + path("p.mps"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(path("p.mps"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("ROWS"), std::string::npos);
+  EXPECT_NE(text.str().find("ENDATA"), std::string::npos);
+}

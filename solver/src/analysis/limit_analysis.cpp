@@ -301,7 +301,8 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
     if (request.friction_model == model::FrictionModel::NonAssociative) {
       // Gilbert et al. (2006), Portioli et al. (2014): replace each cone by a cylinder of radius
       // mu N from the previous step, so sliding does not dilate; damp the radii
-      // (r <- d mu N + (1 - d) r), which stops the plain fixed point from oscillating.
+      // (r <- d mu N + (1 - d) r), which stops the plain fixed point from oscillating
+      // (METHOD.md: alpha 0.37 -> 0.21 -> 0.25 ... undamped).
       result.non_associative.push_back({0, value, 0.0, solution.info.iterations});
       FormulationOptions cylinder_options = formulation_options;
       cylinder_options.friction_set = FrictionSet::Cylinder;
@@ -330,6 +331,8 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
       result.solve_seconds += seconds_since(cylinder_start);
 
       std::vector<double> used_radii = radii;
+      double damping = request.non_associative_damping;
+      double previous_change = 0.0;
       conic::Solution step;
       bool have_step = false;
       for (int iteration = 1; iteration <= request.non_associative_max_iterations; ++iteration) {
@@ -363,7 +366,11 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
           result.non_associative_converged = true;
           break;
         }
-        const double d = request.non_associative_damping;
+        // Adaptive damping: when alpha turns back (the iteration overshoots), halve the weight of
+        // the new radii, down to half the requested damping (lower stalls the drift of alpha).
+        if (previous_change * (value - previous) < 0.0) damping = std::max(damping * 0.5, request.non_associative_damping / 2.0);
+        previous_change = value - previous;
+        const double d = damping;
         for (std::size_t p = 0; p < radii.size(); ++p) {
           radii[p] = std::max(floor, d * cylinder.points[p].friction * normals[p] + (1.0 - d) * radii[p]);
         }

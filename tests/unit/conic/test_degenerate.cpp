@@ -104,3 +104,27 @@ TEST(ConicDegenerate, SameAnswerWithoutEquilibration) {
   ASSERT_EQ(scaled.info.status, SolveStatus::Solved);
   EXPECT_NEAR(plain.info.primal_objective, scaled.info.primal_objective, 1e-7);
 }
+
+TEST(ConicDegenerate, NoEqualityRows) {
+  // min cᵀx over x ≥ 0 alone: 0 if c ≥ 0, unbounded otherwise.
+  ConicProblem p;
+  p.A.resize(0, 2);
+  p.b.resize(0);
+  p.c = Eigen::Vector2d(1, 2);
+  p.cones.num_nonneg = 2;
+  const Solution bounded = solve(p);
+  ASSERT_EQ(bounded.info.status, SolveStatus::Solved) << bounded.info.brief_report();
+  EXPECT_NEAR(bounded.info.primal_objective, 0.0, 1e-7);
+  p.c = Eigen::Vector2d(1, -2);
+  const Solution unbounded = solve(p);
+  ASSERT_EQ(unbounded.info.status, SolveStatus::DualInfeasible);
+  EXPECT_LT(dual_certificate_error(p, unbounded.x), 1e-9);
+}
+
+TEST(ConicDegenerate, EmptyColumnWithNegativeCostIsUnbounded) {
+  // x1 appears in no row and costs −1: the ray e₁ is an unboundedness certificate.
+  const ConicProblem p = make_problem(1, 3, {1, 0, 1}, {1}, {1, -1, 1}, 3);
+  const Solution sol = solve(p);
+  ASSERT_EQ(sol.info.status, SolveStatus::DualInfeasible) << sol.info.brief_report();
+  EXPECT_LT(dual_certificate_error(p, sol.x), 1e-7);
+}
