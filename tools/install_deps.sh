@@ -10,7 +10,13 @@ packages=(
   nlohmann-json3-dev libvalijson-dev         # JSON and JSON Schema validation
   libcli11-dev libgtest-dev                  # command line, tests
   python3                                    # sample generator and plugin core (standard library)
+  coinor-clp                                 # independent LP solver for the cross-check scripts
+  chromium                                   # headless browser for the viewer tests
 )
+# Node.js and npm (.3dm exchange with rhino3dm, the three.js viewer, their tests): any install on
+# PATH will do; Debian's packages only when there is none.
+command -v node >/dev/null || packages+=(nodejs)
+command -v npm >/dev/null || packages+=(npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
