@@ -115,7 +115,9 @@ conic::Settings solver_settings(const model::AnalysisRequest& request, const Ana
   settings.tol_gap_rel = request.tol_relative_gap;
   settings.tol_feas = request.tol_feasibility;
   settings.tol_infeas = std::max(request.tol_feasibility, 1e-10);
-  settings.time_limit_seconds = time_left;
+  // The caller checks for an exhausted budget first; a positive floor keeps the settings valid
+  // when the clock runs out in between (the solver then stops at once with TimeLimit).
+  settings.time_limit_seconds = std::max(time_left, 1e-6);
   settings.verbose = options.log != nullptr;
   settings.log_stream = options.log;
   return settings;
@@ -277,6 +279,11 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
     return std::max(0.0, request.time_limit_seconds - seconds_since(start));
   };
 
+  if (time_left() <= 0.0) {
+    result.verdict = Verdict::TimeLimit;
+    write_verdict_text(m, result);
+    return result;
+  }
   const auto solve_start = Clock::now();
   conic::ConicSolver solver(formulation.problem, solver_settings(request, options, time_left()));
   if (options.progress) solver.set_progress_callback(options.progress);
@@ -336,7 +343,11 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
       conic::Solution step;
       bool have_step = false;
       for (int iteration = 1; iteration <= request.non_associative_max_iterations; ++iteration) {
-        cylinder_solver.settings().time_limit_seconds = time_left();
+        if (time_left() <= 0.0) {
+          result.verdict = Verdict::TimeLimit;
+          break;
+        }
+        cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
         const auto step_start = Clock::now();
         conic::Solution next = cylinder_solver.solve();
         result.solve_seconds += seconds_since(step_start);
@@ -376,10 +387,10 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
         }
         cylinder_solver.update_b(cylinder.rhs_with_radii(radii));
       }
-      if (have_step && result.non_associative_converged && loose > request.tol_relative_gap) {
+      if (have_step && result.non_associative_converged && loose > request.tol_relative_gap && time_left() > 0.0) {
         cylinder_solver.settings().tol_gap_rel = request.tol_relative_gap;
         cylinder_solver.settings().tol_feas = request.tol_feasibility;
-        cylinder_solver.settings().time_limit_seconds = time_left();
+        cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
         cylinder_solver.update_b(cylinder.rhs_with_radii(used_radii));
         const auto final_start = Clock::now();
         conic::Solution tight = cylinder_solver.solve();
@@ -404,8 +415,10 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
         read_solution(m, cylinder, step, false, used_radii, result);
       }
     }
-    if (formulation.settlement) result.base_reaction = value;
-    else result.load_multiplier = value;
+    if (result.verdict == Verdict::Collapse) {
+      if (formulation.settlement) result.base_reaction = value;
+      else result.load_multiplier = value;
+    }
   }
   write_verdict_text(m, result);
   return result;

@@ -1,0 +1,18 @@
+#! python3
+# Rhino 8 command RblaClear: Delete the drawn rbla results (undoable).
+# Install: see plugin/README.md (ScriptEditor project or Yak package). Thin: everything is in
+# rbla_rhino.commands and the host-independent rbla_cad core.
+import os
+import sys
+
+try:
+    import _bootstrap  # noqa: F401  (adds plugin/ and plugin/rhino/ to sys.path if needed)
+except ImportError:
+    _here = os.path.dirname(os.path.abspath(__file__)) if "__file__" in globals() else ""
+    if _here and _here not in sys.path:
+        sys.path.insert(0, _here)
+        import _bootstrap  # noqa: F401
+
+from rbla_rhino import commands
+
+commands.clear_command()
