@@ -2,17 +2,19 @@
 // one JSON object with the outcome. Used by tests/crosscheck/crosscheck_cvxopt.py.
 //   rbla_conic_cbf_solve problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]
 
-#include "rbla/conic/io.hpp"
-#include "rbla/conic/solver.hpp"
-
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <iostream>
 
+#include "rbla/conic/io.hpp"
+#include "rbla/conic/solver.hpp"
+
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]\n", argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]\n",
+                 argv[0]);
     return 2;
   }
   rbla::conic::Settings settings;

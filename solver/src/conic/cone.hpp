@@ -6,7 +6,6 @@
 // and the linearised complementarity is  λ ∘ (W dz + W⁻¹ dx) = d,  "∘" the Jordan product.
 
 #include <Eigen/Core>
-
 #include <memory>
 #include <vector>
 
@@ -70,7 +69,7 @@ class NonnegativeCone final : public Cone {
   double* pack_W2(double* out) const override;
 
  private:
-  Vec w_;       // diagonal of W
+  Vec w_;  // diagonal of W
   Vec lambda_;
 };
 

@@ -1,7 +1,7 @@
-#include "cone.hpp"
-
 #include <algorithm>
 #include <limits>
+
+#include "cone.hpp"
 
 namespace rbla::conic::detail {
 
@@ -37,12 +37,12 @@ void ConeSet::lambda(Vec& out) const {
   for (const auto& k : cones_) k->lambda(out.segment(k->offset(), k->dim()));
 }
 
-#define RBLA_CONE_APPLY(method)                                                            \
-  void ConeSet::method(const Vec& v, Vec& out) const {                                     \
-    out.resize(dim_);                                                                      \
-    for (const auto& k : cones_) {                                                         \
-      k->method(v.segment(k->offset(), k->dim()), out.segment(k->offset(), k->dim()));     \
-    }                                                                                      \
+#define RBLA_CONE_APPLY(method)                                                        \
+  void ConeSet::method(const Vec& v, Vec& out) const {                                 \
+    out.resize(dim_);                                                                  \
+    for (const auto& k : cones_) {                                                     \
+      k->method(v.segment(k->offset(), k->dim()), out.segment(k->offset(), k->dim())); \
+    }                                                                                  \
   }
 RBLA_CONE_APPLY(mul_W)
 RBLA_CONE_APPLY(mul_Winv)
@@ -61,8 +61,8 @@ void ConeSet::jordan_product(const Vec& a, const Vec& b, Vec& out) const {
 double ConeSet::max_step(const Vec& v, const Vec& dv) const {
   double step = std::numeric_limits<double>::infinity();
   for (const auto& k : cones_) {
-    step = std::min(step,
-                    k->max_step(v.segment(k->offset(), k->dim()), dv.segment(k->offset(), k->dim())));
+    step = std::min(
+        step, k->max_step(v.segment(k->offset(), k->dim()), dv.segment(k->offset(), k->dim())));
   }
   return step;
 }

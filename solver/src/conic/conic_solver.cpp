@@ -16,18 +16,17 @@
 // Mehrotra predictor–corrector: predictor η = 1, d = −λ∘λ, d_κ = −τκ; corrector η = 1 − σ,
 // σ = (1 − α_aff)³, d = −λ∘λ − (W⁻¹dx_a)∘(W dz_a) + σμe, d_κ = −τκ − dτ_a dκ_a + σμ.
 
-#include "rbla/conic/solver.hpp"
-
-#include "cone.hpp"
-#include "equilibration.hpp"
-#include "normal_equations.hpp"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <limits>
+
+#include "cone.hpp"
+#include "equilibration.hpp"
+#include "normal_equations.hpp"
+#include "rbla/conic/solver.hpp"
 
 namespace rbla::conic {
 
@@ -73,9 +72,12 @@ struct ConicSolver::Impl {
   std::vector<detail::ScalingBlock> blocks;
   detail::Equilibration equilibration;
   Eigen::SparseMatrix<double> A;  // equilibrated
-  Vec b, c;                        // equilibrated
+  Vec b, c;                       // equilibrated
   std::vector<bool> is_dense;
   std::unique_ptr<detail::NormalEquations> normal;
+  // Built on first need: the same normal equations with the dense columns inside the sparse
+  // factor, used when the bordered dense-column solve loses accuracy (late iterations).
+  std::unique_ptr<detail::NormalEquations> normal_without_dense;
   std::vector<double> packed_W2;
   double setup_seconds = 0;
   double symbolic_seconds = 0;
@@ -85,7 +87,8 @@ struct ConicSolver::Impl {
     auto messages = problem.validate();
     if (!messages.empty()) throw ConicSetupError::from_messages("invalid conic problem", messages);
     messages = settings.validate();
-    if (!messages.empty()) throw ConicSetupError::from_messages("invalid solver settings", messages);
+    if (!messages.empty())
+      throw ConicSetupError::from_messages("invalid solver settings", messages);
     cones = detail::ConeSet(problem.cones.num_nonneg, problem.cones.soc_dims);
     blocks = cones.scaling_blocks();
     std::size_t packed_size = 0;
@@ -105,7 +108,8 @@ struct ConicSolver::Impl {
     const Eigen::Index n = problem.A.cols();
     is_dense.assign(static_cast<std::size_t>(n), false);
     if (!settings.dense_columns || settings.dense_column_max == 0) return;
-    const double mean = static_cast<double>(problem.A.nonZeros()) / static_cast<double>(std::max<Eigen::Index>(n, 1));
+    const double mean = static_cast<double>(problem.A.nonZeros()) /
+                        static_cast<double>(std::max<Eigen::Index>(n, 1));
     const double threshold = std::max(static_cast<double>(settings.dense_column_min_nnz),
                                       settings.dense_column_ratio * mean);
     std::vector<std::pair<long, Eigen::Index>> candidates;
@@ -113,19 +117,21 @@ struct ConicSolver::Impl {
       const long nnz = problem.A.outerIndexPtr()[j + 1] - problem.A.outerIndexPtr()[j];
       if (static_cast<double>(nnz) >= threshold) candidates.push_back({nnz, j});
     }
-    std::sort(candidates.begin(), candidates.end(),
-              [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
-    const std::size_t keep = std::min(candidates.size(), static_cast<std::size_t>(settings.dense_column_max));
-    for (std::size_t k = 0; k < keep; ++k) is_dense[static_cast<std::size_t>(candidates[k].second)] = true;
+    std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+      return a.first != b.first ? a.first > b.first : a.second < b.second;
+    });
+    const std::size_t keep =
+        std::min(candidates.size(), static_cast<std::size_t>(settings.dense_column_max));
+    for (std::size_t k = 0; k < keep; ++k)
+      is_dense[static_cast<std::size_t>(candidates[k].second)] = true;
   }
 
   // Recomputes the equilibration from the current problem data and refreshes A, b, c.
   void rescale() {
     if (settings.equilibrate) {
-      equilibration = detail::ruiz_equilibration(problem.A, problem.b, problem.c, blocks,
-                                                 settings.equilibrate_max_iter,
-                                                 settings.equilibrate_min_scaling,
-                                                 settings.equilibrate_max_scaling);
+      equilibration = detail::ruiz_equilibration(
+          problem.A, problem.b, problem.c, blocks, settings.equilibrate_max_iter,
+          settings.equilibrate_min_scaling, settings.equilibrate_max_scaling);
     } else {
       equilibration = detail::identity_equilibration(problem.A.rows(), problem.A.cols());
     }
@@ -133,12 +139,13 @@ struct ConicSolver::Impl {
     b = equilibration.b_scale * equilibration.row_scale.cwiseProduct(problem.b);
     c = equilibration.c_scale * equilibration.col_scale.cwiseProduct(problem.c);
     if (normal) normal->set_A_values(A);
+    if (normal_without_dense) normal_without_dense->set_A_values(A);
   }
 
   Metrics evaluate(const Vec& x, const Vec& y, const Vec& z, double tau) const {
     const auto& eq = equilibration;
     Metrics r;
-    const Vec x_hat = eq.col_scale.cwiseProduct(x);      // ∝ x, original units up to 1/(s_b τ)
+    const Vec x_hat = eq.col_scale.cwiseProduct(x);  // ∝ x, original units up to 1/(s_b τ)
     const Vec y_hat = eq.row_scale.cwiseProduct(y);
     const Vec z_hat = z.cwiseQuotient(eq.col_scale);
     r.x = x_hat / (eq.b_scale * tau);
@@ -147,13 +154,16 @@ struct ConicSolver::Impl {
     const auto& P = problem;
     r.primal_objective = P.c.dot(r.x);
     r.dual_objective = P.b.dot(r.y);
-    r.gap_abs = std::abs(r.primal_objective - r.dual_objective);
-    r.gap_rel = r.gap_abs / std::max(1.0, std::min(std::abs(r.primal_objective), std::abs(r.dual_objective)));
+    // Both gaps: |cᵀx − bᵀy| alone can be small while the complementarity xᵀz is not, when the
+    // dual residual's contribution r_dᵀx cancels it (many variables, large x); ECOS uses xᵀz.
+    r.gap_abs = std::max(std::abs(r.primal_objective - r.dual_objective), std::abs(r.x.dot(r.z)));
+    r.gap_rel = r.gap_abs /
+                std::max(1.0, std::min(std::abs(r.primal_objective), std::abs(r.dual_objective)));
     const Vec Ax = P.A * r.x;
     r.res_primal = inf_norm(Ax - P.b) / std::max(1.0, inf_norm(P.b) + inf_norm(r.x));
     const Vec Aty = P.A.transpose() * r.y;
-    r.res_dual = inf_norm(Aty + r.z - P.c) /
-                 std::max(1.0, inf_norm(P.c) + inf_norm(r.y) + inf_norm(r.z));
+    r.res_dual =
+        inf_norm(Aty + r.z - P.c) / std::max(1.0, inf_norm(P.c) + inf_norm(r.y) + inf_norm(r.z));
     const double bty = P.b.dot(y_hat);
     if (bty > 0) {
       r.y_cert = y_hat / bty;
@@ -176,13 +186,14 @@ namespace {
 void print_banner(std::ostream& out, const ConicProblem& p, int dense, long nnz_M, long nnz_L,
                   const std::string& backend) {
   char line[512];
-  std::snprintf(line, sizeof line,
-                "rbla conic interior point (HSDE, NT scaling, Mehrotra predictor-corrector)\n"
-                "  rows %lld, variables %lld, nnz(A) %lld, nonnegative %lld, second-order cones %zu\n"
-                "  dense columns %d, nnz(M) %ld, nnz(L) %ld, %s\n",
-                static_cast<long long>(p.A.rows()), static_cast<long long>(p.A.cols()),
-                static_cast<long long>(p.A.nonZeros()), static_cast<long long>(p.cones.num_nonneg),
-                p.cones.soc_dims.size(), dense, nnz_M, nnz_L, backend.c_str());
+  std::snprintf(
+      line, sizeof line,
+      "rbla conic interior point (HSDE, NT scaling, Mehrotra predictor-corrector)\n"
+      "  rows %lld, variables %lld, nnz(A) %lld, nonnegative %lld, second-order cones %zu\n"
+      "  dense columns %d, nnz(M) %ld, nnz(L) %ld, %s\n",
+      static_cast<long long>(p.A.rows()), static_cast<long long>(p.A.cols()),
+      static_cast<long long>(p.A.nonZeros()), static_cast<long long>(p.cones.num_nonneg),
+      p.cones.soc_dims.size(), dense, nnz_M, nnz_L, backend.c_str());
   out << line
       << "iter  primal obj       dual obj         gap_rel   res_pri   res_dual  mu        "
          "tau       kappa     step    sigma   ref\n";
@@ -203,7 +214,8 @@ Solution ConicSolver::Impl::solve() {
   const auto start = Clock::now();
   {
     const auto messages = settings.validate();
-    if (!messages.empty()) throw ConicSetupError::from_messages("invalid solver settings", messages);
+    if (!messages.empty())
+      throw ConicSetupError::from_messages("invalid solver settings", messages);
   }
   const Settings& s = settings;
   std::ostream* log = s.verbose ? (s.log_stream ? s.log_stream : &std::cout) : nullptr;
@@ -214,8 +226,9 @@ Solution ConicSolver::Impl::solve() {
   info.symbolic_seconds = symbolic_seconds;
   info.num_dense_columns = normal->num_dense_columns();
   info.num_factor_nonzeros = normal->cholesky().factor_nonzeros();
-  if (log) print_banner(*log, problem, info.num_dense_columns, normal->num_matrix_nonzeros(),
-                        info.num_factor_nonzeros, info.backend);
+  if (log)
+    print_banner(*log, problem, info.num_dense_columns, normal->num_matrix_nonzeros(),
+                 info.num_factor_nonzeros, info.backend);
 
   const Eigen::Index n = A.cols();
   const Eigen::Index m = A.rows();
@@ -226,6 +239,7 @@ Solution ConicSolver::Impl::solve() {
   z = e;
   double tau = 1.0, kappa = 1.0;
 
+  detail::NormalEquations* ne = normal.get();
   Vec rp, rd, lambda, W2c, Atq_c, dxq, q, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
   Vec dx_a, dy_a, dz_a, dx, dy, dz, scaled_dx, scaled_dz, lambda_sq, corr, ep, dp, ddx;
   double rg = 0;
@@ -235,6 +249,11 @@ Solution ConicSolver::Impl::solve() {
   SolveStatus status = SolveStatus::NumericalFailure;
   Metrics best_metrics;
   double best_merit = std::numeric_limits<double>::infinity();
+  // Infeasibility certificates whose residual stagnates: on some nearly infeasible problems the
+  // embedding's iterates shrink towards zero together (τ and κ alike), and the normalised
+  // certificate stops improving above tol_infeas.
+  Metrics best_primal_cert, best_dual_cert;
+  int primal_cert_improved_at = 0, dual_cert_improved_at = 0;
   int short_steps = 0;
 
   for (int iter = 0;; ++iter) {
@@ -285,8 +304,31 @@ Solution ConicSolver::Impl::solve() {
       status = SolveStatus::DualInfeasible;
       break;
     }
+    if (metrics.primal_cert < 0.5 * best_primal_cert.primal_cert) {
+      best_primal_cert = metrics;
+      primal_cert_improved_at = iter;
+    }
+    if (metrics.dual_cert < 0.5 * best_dual_cert.dual_cert) {
+      best_dual_cert = metrics;
+      dual_cert_improved_at = iter;
+    }
+    if (tau < kappa && best_primal_cert.primal_cert <= s.reduced_tol_infeas &&
+        iter - primal_cert_improved_at > s.stall_max_iter) {
+      status = SolveStatus::PrimalInfeasible;
+      metrics = best_primal_cert;
+      info.failure_reason = "certificate stagnated above tol_infeas (reduced accuracy)";
+      break;
+    }
+    if (tau < kappa && best_dual_cert.dual_cert <= s.reduced_tol_infeas &&
+        iter - dual_cert_improved_at > s.stall_max_iter) {
+      status = SolveStatus::DualInfeasible;
+      metrics = best_dual_cert;
+      info.failure_reason = "certificate stagnated above tol_infeas (reduced accuracy)";
+      break;
+    }
     if (!std::isfinite(mu) || !std::isfinite(tau) || !std::isfinite(kappa)) {
       status = SolveStatus::NumericalFailure;
+      info.failure_reason = "non-finite iterate";
       break;
     }
     if (iter >= s.max_iter) {
@@ -305,104 +347,135 @@ Solution ConicSolver::Impl::solve() {
     // ---- Scaling and factorisation ----
     if (!cones.update_scaling(x, z)) {
       status = SolveStatus::NumericalFailure;
+      info.failure_reason = "iterate left the cone interior (NT scaling undefined)";
       break;
     }
     cones.lambda(lambda);
     cones.pack_W2(packed_W2);
-    const detail::FactorReport report =
-        normal->factor(packed_W2, s.reg_static, s.reg_retry_factor, s.reg_max_retries);
-    info.assembly_seconds += report.assembly_seconds;
-    info.factor_seconds += report.factor_seconds;
-    info.num_refactor_retries += report.retries;
-    if (!report.ok) {
-      status = SolveStatus::NumericalFailure;
-      break;
-    }
-
-    const auto solve_start = Clock::now();
+    double alpha = 0, sigma = 0, dtau = 0, dkappa = 0;
     int refine_steps = 0;
-    // M q = A W² c + b, and the dτ denominator.
-    cones.mul_W2(c, W2c);
-    rhs = A * W2c + b;
-    // q's error shows up in the directions' primal and gap residuals, which are refined below.
-    refine_steps += normal->solve(rhs, q, s.refine_max_iter, refine_target);
-    Atq_c = A.transpose() * q - c;
-    cones.mul_W2(Atq_c, dxq);
-    const double denominator = b.dot(q) - c.dot(dxq) + kappa / tau;
+    bool factor_failed = false;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      bool refinement_failed = false;
+      const detail::FactorReport report =
+          ne->factor(packed_W2, s.reg_static, s.reg_retry_factor, s.reg_max_retries);
+      info.assembly_seconds += report.assembly_seconds;
+      info.factor_seconds += report.factor_seconds;
+      info.num_refactor_retries += report.retries;
+      if (!report.ok) {
+        factor_failed = true;
+        break;
+      }
 
-    // Solves the Newton system for (η, d, d_κ); see the header comment.
-    auto direction = [&](double eta, const Vec& d, double d_kappa, Vec& out_dx, Vec& out_dy,
-                         Vec& out_dz, double& out_dtau, double& out_dkappa) {
-      cones.lambda_divide(d, ds_tilde);
-      cones.mul_Winv(ds_tilde, r1);
-      r1 -= eta * rd;
-      cones.mul_W2(r1, tmp);
-      rhs = -eta * rp - A * tmp;
-      // Plain solve: its error is measured (cheaply, through A dx) and removed below.
-      refine_steps += normal->solve(rhs, p, 0, refine_target);
-      tmp = A.transpose() * p + r1;
-      cones.mul_W2(tmp, out_dx);
-      out_dtau = (-eta * rg - b.dot(p) + c.dot(out_dx) + d_kappa / tau) / denominator;
-      out_dy = p + q * out_dtau;
-      out_dx += dxq * out_dtau;
-      out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
-      out_dkappa = (d_kappa - kappa * out_dtau) / tau;
-      // Refinement on the unreduced residuals: the normal equations lose accuracy through the
-      // cancellation in A W² (Aᵀp + r₁) when W² is ill-conditioned (late iterations), so the
-      // error of the primal equation  e_p = A dx − b dτ + η r_p  is measured directly (A dx is
-      // accurate) and corrected by the same elimination with right-hand side (−e_p, 0, −e_g, 0).
-      // dx and dz are updated incrementally, which keeps W dz + W⁻¹dx unchanged.
-      double previous = std::numeric_limits<double>::infinity();
-      for (int pass = 0; pass < s.refine_max_iter; ++pass) {
-        ep = A * out_dx - b * out_dtau + eta * rp;
-        const double eg = b.dot(out_dy) - c.dot(out_dx) - out_dkappa + eta * rg;
-        const double error = std::max(inf_norm(ep), std::abs(eg));
-        if (error <= refine_target || !(error < 0.5 * previous)) break;
-        previous = error;
-        ep = -ep;
-        // First a plain correction (one triangular solve); if that was not enough, CG on M.
-        refine_steps += 1 + normal->solve(ep, dp, pass == 0 ? 0 : s.refine_max_iter, refine_target);
-        tmp = A.transpose() * dp;
-        cones.mul_W2(tmp, ddx);
-        const double ddtau = (-eg - b.dot(dp) + c.dot(ddx)) / denominator;
-        out_dy += dp + q * ddtau;
-        out_dx += ddx + dxq * ddtau;
-        out_dtau += ddtau;
+      const auto solve_start = Clock::now();
+      // M q = A W² c + b, and the dτ denominator.
+      cones.mul_W2(c, W2c);
+      rhs = A * W2c + b;
+      // q enters every direction (and the dτ denominator), so it is solved tightly.
+      refine_steps +=
+          ne->solve(rhs, q, s.refine_max_iter, s.refine_tol_rel * (1.0 + inf_norm(rhs)));
+      Atq_c = A.transpose() * q - c;
+      cones.mul_W2(Atq_c, dxq);
+      const double denominator = b.dot(q) - c.dot(dxq) + kappa / tau;
+
+      // Solves the Newton system for (η, d, d_κ); see the header comment.
+      auto direction = [&](double eta, const Vec& d, double d_kappa, Vec& out_dx, Vec& out_dy,
+                           Vec& out_dz, double& out_dtau, double& out_dkappa) {
+        cones.lambda_divide(d, ds_tilde);
+        cones.mul_Winv(ds_tilde, r1);
+        r1 -= eta * rd;
+        cones.mul_W2(r1, tmp);
+        rhs = -eta * rp - A * tmp;
+        // Plain solve: its error is measured (cheaply, through A dx) and removed below.
+        refine_steps += ne->solve(rhs, p, 0, refine_target);
+        tmp = A.transpose() * p + r1;
+        cones.mul_W2(tmp, out_dx);
+        out_dtau = (-eta * rg - b.dot(p) + c.dot(out_dx) + d_kappa / tau) / denominator;
+        out_dy = p + q * out_dtau;
+        out_dx += dxq * out_dtau;
         out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
         out_dkappa = (d_kappa - kappa * out_dtau) / tau;
+        // Refinement on the unreduced residuals: the normal equations lose accuracy through the
+        // cancellation in A W² (Aᵀp + r₁) when W² is ill-conditioned (late iterations), so the
+        // error of the primal equation  e_p = A dx − b dτ + η r_p  is measured directly (A dx is
+        // accurate) and corrected by the same elimination with right-hand side (−e_p, 0, −e_g, 0).
+        // dx and dz are updated incrementally, which keeps W dz + W⁻¹dx unchanged.
+        double previous = std::numeric_limits<double>::infinity();
+        for (int pass = 0; pass < s.refine_max_iter; ++pass) {
+          ep = A * out_dx - b * out_dtau + eta * rp;
+          const double eg = b.dot(out_dy) - c.dot(out_dx) - out_dkappa + eta * rg;
+          const double error = std::max(inf_norm(ep), std::abs(eg));
+          if (error <= refine_target || !(error < 0.5 * previous)) {
+            // An error above the residual being removed means the solves are not usable.
+            if (error > std::max(1e3 * refine_target, inf_norm(rp))) refinement_failed = true;
+            break;
+          }
+          previous = error;
+          ep = -ep;
+          // First a plain correction (one triangular solve); if that was not enough, CG on M.
+          refine_steps += 1 + ne->solve(ep, dp, pass == 0 ? 0 : s.refine_max_iter, refine_target);
+          tmp = A.transpose() * dp;
+          cones.mul_W2(tmp, ddx);
+          const double ddtau = (-eg - b.dot(dp) + c.dot(ddx)) / denominator;
+          out_dy += dp + q * ddtau;
+          out_dx += ddx + dxq * ddtau;
+          out_dtau += ddtau;
+          out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
+          out_dkappa = (d_kappa - kappa * out_dtau) / tau;
+        }
+      };
+      // Largest step keeping x, z in K and τ, κ ≥ 0, measured in the scaled space around λ.
+      auto max_step = [&](const Vec& ddx, const Vec& ddz, double dtau, double dkappa) {
+        cones.mul_Winv(ddx, scaled_dx);
+        cones.mul_W(ddz, scaled_dz);
+        double alpha =
+            std::min(cones.max_step(lambda, scaled_dx), cones.max_step(lambda, scaled_dz));
+        if (dtau < 0) alpha = std::min(alpha, -tau / dtau);
+        if (dkappa < 0) alpha = std::min(alpha, -kappa / dkappa);
+        return alpha;
+      };
+
+      // ---- Predictor (affine scaling) ----
+      cones.jordan_product(lambda, lambda, lambda_sq);
+      ds = -lambda_sq;
+      double dtau_a = 0, dkappa_a = 0;
+      direction(1.0, ds, -tau * kappa, dx_a, dy_a, dz_a, dtau_a, dkappa_a);
+      const double alpha_aff = std::min(1.0, max_step(dx_a, dz_a, dtau_a, dkappa_a));
+      sigma = std::clamp(std::pow(1.0 - alpha_aff, 3), 0.0, 1.0);
+
+      // ---- Corrector (Mehrotra second-order term + centring) ----
+      cones.mul_Winv(dx_a, scaled_dx);
+      cones.mul_W(dz_a, scaled_dz);
+      cones.jordan_product(scaled_dx, scaled_dz, corr);
+      ds = -lambda_sq - corr + (sigma * mu) * e;
+      direction(1.0 - sigma, ds, -tau * kappa - dtau_a * dkappa_a + sigma * mu, dx, dy, dz, dtau,
+                dkappa);
+      alpha = std::min(1.0, s.step_fraction * max_step(dx, dz, dtau, dkappa));
+      info.solve_seconds += seconds_since(solve_start);
+      if (!refinement_failed || ne->num_dense_columns() == 0) break;
+      // The bordered dense-column solve lost accuracy: move the dense columns into the sparse
+      // factor (one more symbolic analysis, slower factorisations) for the rest of this solve.
+      if (!normal_without_dense) {
+        const auto start_symbolic = Clock::now();
+        normal_without_dense = std::make_unique<detail::NormalEquations>(
+            A, blocks, std::vector<bool>(is_dense.size(), false), s.ordering);
+        info.symbolic_seconds += seconds_since(start_symbolic);
       }
-    };
-    // Largest step keeping x, z in K and τ, κ ≥ 0, measured in the scaled space around λ.
-    auto max_step = [&](const Vec& ddx, const Vec& ddz, double dtau, double dkappa) {
-      cones.mul_Winv(ddx, scaled_dx);
-      cones.mul_W(ddz, scaled_dz);
-      double alpha = std::min(cones.max_step(lambda, scaled_dx), cones.max_step(lambda, scaled_dz));
-      if (dtau < 0) alpha = std::min(alpha, -tau / dtau);
-      if (dkappa < 0) alpha = std::min(alpha, -kappa / dkappa);
-      return alpha;
-    };
-
-    // ---- Predictor (affine scaling) ----
-    cones.jordan_product(lambda, lambda, lambda_sq);
-    ds = -lambda_sq;
-    double dtau_a = 0, dkappa_a = 0;
-    direction(1.0, ds, -tau * kappa, dx_a, dy_a, dz_a, dtau_a, dkappa_a);
-    const double alpha_aff = std::min(1.0, max_step(dx_a, dz_a, dtau_a, dkappa_a));
-    const double sigma = std::clamp(std::pow(1.0 - alpha_aff, 3), 0.0, 1.0);
-
-    // ---- Corrector (Mehrotra second-order term + centring) ----
-    cones.mul_Winv(dx_a, scaled_dx);
-    cones.mul_W(dz_a, scaled_dz);
-    cones.jordan_product(scaled_dx, scaled_dz, corr);
-    ds = -lambda_sq - corr + (sigma * mu) * e;
-    double dtau = 0, dkappa = 0;
-    direction(1.0 - sigma, ds, -tau * kappa - dtau_a * dkappa_a + sigma * mu, dx, dy, dz, dtau, dkappa);
-    const double alpha = std::min(1.0, s.step_fraction * max_step(dx, dz, dtau, dkappa));
-    info.solve_seconds += seconds_since(solve_start);
+      ne = normal_without_dense.get();
+      info.dense_column_fallback = true;
+      if (log)
+        *log << "      dense columns moved into the sparse factor (bordered solve inaccurate)\n";
+    }
+    if (factor_failed) {
+      status = SolveStatus::NumericalFailure;
+      info.failure_reason = "factorisation failed after all regularisation retries";
+      break;
+    }
 
     short_steps = alpha < s.stall_step ? short_steps + 1 : 0;
     if (!(alpha >= s.step_min) || short_steps > s.stall_max_iter) {
       status = SolveStatus::NumericalFailure;  // stalled
+      info.failure_reason = "step too short (stalled)";
       break;
     }
     x += alpha * dx;
@@ -421,6 +494,14 @@ Solution ConicSolver::Impl::solve() {
     if (best_metrics.meets(s.reduced_tol_feas, s.reduced_tol_gap_abs, s.reduced_tol_gap_rel)) {
       status = SolveStatus::SolvedInaccurate;
       metrics = best_metrics;
+    } else if (tau < kappa && best_primal_cert.primal_cert <= s.reduced_tol_infeas) {
+      status = SolveStatus::PrimalInfeasible;
+      metrics = best_primal_cert;
+      info.failure_reason = "certificate above tol_infeas (reduced accuracy)";
+    } else if (tau < kappa && best_dual_cert.dual_cert <= s.reduced_tol_infeas) {
+      status = SolveStatus::DualInfeasible;
+      metrics = best_dual_cert;
+      info.failure_reason = "certificate above tol_infeas (reduced accuracy)";
     }
   }
 
@@ -462,13 +543,14 @@ Solution ConicSolver::Impl::solve() {
   if (log) {
     char line[512];
     std::snprintf(line, sizeof line,
-                  "status: %s\niterations %d, primal %.12g, dual %.12g\n"
+                  "status: %s%s%s\niterations %d, primal %.12g, dual %.12g\n"
                   "time [s]: setup %.3f (symbolic %.3f), assembly %.3f, factor %.3f, solve %.3f, "
                   "total %.3f; refactor retries %d\n",
-                  to_string(status), info.iterations, info.primal_objective, info.dual_objective,
-                  info.setup_seconds, info.symbolic_seconds, info.assembly_seconds,
-                  info.factor_seconds, info.solve_seconds, info.total_seconds,
-                  info.num_refactor_retries);
+                  to_string(status), info.failure_reason.empty() ? "" : " - ",
+                  info.failure_reason.c_str(), info.iterations, info.primal_objective,
+                  info.dual_objective, info.setup_seconds, info.symbolic_seconds,
+                  info.assembly_seconds, info.factor_seconds, info.solve_seconds,
+                  info.total_seconds, info.num_refactor_retries);
     *log << line;
   }
   solution.info = std::move(info);
@@ -507,10 +589,15 @@ void ConicSolver::update_A_values(const Eigen::VectorXd& values) {
   impl_->rescale();
 }
 
-void ConicSolver::set_progress_callback(ProgressCallback callback) { impl_->callback = std::move(callback); }
+void ConicSolver::set_progress_callback(ProgressCallback callback) {
+  impl_->callback = std::move(callback);
+}
 Settings& ConicSolver::settings() { return impl_->settings; }
 const ConicProblem& ConicSolver::problem() const { return impl_->problem; }
-int ConicSolver::num_symbolic_analyses() const { return impl_->normal->cholesky().num_analyses(); }
+int ConicSolver::num_symbolic_analyses() const {
+  return impl_->normal->cholesky().num_analyses() +
+         (impl_->normal_without_dense ? impl_->normal_without_dense->cholesky().num_analyses() : 0);
+}
 
 Solution solve(const ConicProblem& problem, const Settings& settings) {
   return ConicSolver(problem, settings).solve();

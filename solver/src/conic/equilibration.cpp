@@ -38,7 +38,8 @@ Equilibration ruiz_equilibration(const Eigen::SparseMatrix<double>& A, const Eig
     for (const ScalingBlock& g : groups) {
       const double norm = col_norm.segment(g.first, g.size).maxCoeff();
       if (norm > 0) {
-        eq.col_scale.segment(g.first, g.size).setConstant(clamp(eq.col_scale[g.first] / std::sqrt(norm)));
+        eq.col_scale.segment(g.first, g.size)
+            .setConstant(clamp(eq.col_scale[g.first] / std::sqrt(norm)));
         worst = std::max(worst, std::abs(1.0 - norm));
       }
     }

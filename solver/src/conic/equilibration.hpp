@@ -6,9 +6,9 @@
 //   Ã = D A E,   b̃ = s_b D b,   c̃ = s_c E c
 //   x = E x̃ / s_b,   y = D ỹ / s_c,   z = E⁻¹ z̃ / s_c.
 
-#include "cone.hpp"
-
 #include <Eigen/SparseCore>
+
+#include "cone.hpp"
 
 namespace rbla::conic::detail {
 

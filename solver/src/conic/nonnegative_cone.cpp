@@ -1,7 +1,7 @@
-#include "cone.hpp"
-
 #include <cmath>
 #include <limits>
+
+#include "cone.hpp"
 
 namespace rbla::conic::detail {
 

@@ -1,11 +1,11 @@
 #include "normal_equations.hpp"
 
-#include "rbla/conic/problem.hpp"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+
+#include "rbla/conic/problem.hpp"
 
 namespace rbla::conic::detail {
 
@@ -44,8 +44,8 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
     for (Eigen::Index j = sb.first; j < sb.first + sb.size; ++j) {
       for (int p = outer[j]; p < outer[j + 1]; ++p) {
         const auto a = std::lower_bound(bd.rows.begin(), bd.rows.end(), inner[p]) - bd.rows.begin();
-        nnz_to_local_[static_cast<std::size_t>(p)] =
-            static_cast<int>(a_total + static_cast<std::size_t>(a) + r * static_cast<std::size_t>(j - sb.first));
+        nnz_to_local_[static_cast<std::size_t>(p)] = static_cast<int>(
+            a_total + static_cast<std::size_t>(a) + r * static_cast<std::size_t>(j - sb.first));
       }
     }
     a_total += r * static_cast<std::size_t>(sb.size);
@@ -71,13 +71,15 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
     col.push_back(static_cast<int>(i));
     std::sort(col.begin(), col.end());
     col.erase(std::unique(col.begin(), col.end()), col.end());
-    col_ptr_[static_cast<std::size_t>(i) + 1] = col_ptr_[static_cast<std::size_t>(i)] + static_cast<int>(col.size());
+    col_ptr_[static_cast<std::size_t>(i) + 1] =
+        col_ptr_[static_cast<std::size_t>(i)] + static_cast<int>(col.size());
   }
   row_ind_.reserve(static_cast<std::size_t>(col_ptr_.back()));
   diag_pos_.resize(static_cast<std::size_t>(m_));
   for (Eigen::Index i = 0; i < m_; ++i) {
     auto& col = lower_rows_of_col[static_cast<std::size_t>(i)];
-    diag_pos_[static_cast<std::size_t>(i)] = static_cast<int>(row_ind_.size());  // diagonal is first
+    diag_pos_[static_cast<std::size_t>(i)] =
+        static_cast<int>(row_ind_.size());  // diagonal is first
     row_ind_.insert(row_ind_.end(), col.begin(), col.end());
     std::vector<int>().swap(col);
   }
@@ -94,7 +96,8 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
       const int* begin = row_ind_.data() + col_ptr_[static_cast<std::size_t>(col)];
       const int* end = row_ind_.data() + col_ptr_[static_cast<std::size_t>(col) + 1];
       for (std::size_t a = b; a < r; ++a) {
-        value_map_[cursor++] = static_cast<int>(std::lower_bound(begin, end, bd.rows[a]) - row_ind_.data());
+        value_map_[cursor++] =
+            static_cast<int>(std::lower_bound(begin, end, bd.rows[a]) - row_ind_.data());
       }
     }
   }
@@ -112,7 +115,8 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
 
 void NormalEquations::set_A_values(const Eigen::SparseMatrix<double>& A) {
   const double* values = A.valuePtr();
-  for (std::size_t p = 0; p < nnz_to_local_.size(); ++p) local_A_[static_cast<std::size_t>(nnz_to_local_[p])] = values[p];
+  for (std::size_t p = 0; p < nnz_to_local_.size(); ++p)
+    local_A_[static_cast<std::size_t>(nnz_to_local_[p])] = values[p];
 }
 
 FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, double reg_static,
@@ -172,16 +176,19 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
     Eigen::MatrixXd schur(k, k);
     Eigen::VectorXd column, solved;
     for (Eigen::Index j = 0; j < k; ++j) {
-      const BlockData& bd = blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
+      const BlockData& bd =
+          blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
       column.setZero(m_);
-      for (std::size_t a = 0; a < bd.rows.size(); ++a) column[bd.rows[a]] = local_A_[bd.a_offset + a];
+      for (std::size_t a = 0; a < bd.rows.size(); ++a)
+        column[bd.rows[a]] = local_A_[bd.a_offset + a];
       dense_D_.col(j) = column;
       cholesky_.solve(column, solved);
       dense_Minv_D_.col(j) = solved;
     }
     schur.noalias() = dense_D_.transpose() * dense_Minv_D_;
     for (Eigen::Index j = 0; j < k; ++j) {
-      const BlockData& bd = blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
+      const BlockData& bd =
+          blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
       const double d = std::max(packed_W2_[bd.w2_offset], 1e-300);
       schur(j, j) += 1.0 / d;
     }

@@ -14,15 +14,17 @@
 // This form stays well defined when d → 0 or d → ∞ (unlike Sherman–Morrison–Woodbury in d).
 //
 // M_s is factored as M_s + δI (δ = static regularisation, raised on failure); each solve is
-// then refined on the exact, unregularised M (applied as A (W² (Aᵀ v)), never formed).
-
-#include "cone.hpp"
-#include "sparse_cholesky.hpp"
+// then refined by preconditioned CG on the exact, unregularised M (applied as A (W² (Aᵀ v)),
+// never formed). When M_s becomes nearly singular (the dense column carries directions nothing
+// else does), M_s⁻¹D blows up and the bordered solve loses accuracy; the caller detects that
+// from the Newton residuals and switches to a NormalEquations built without dense columns.
 
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCore>
-
 #include <vector>
+
+#include "cone.hpp"
+#include "sparse_cholesky.hpp"
 
 namespace rbla::conic::detail {
 
@@ -63,30 +65,30 @@ class NormalEquations {
   struct BlockData {
     Eigen::Index first_col = 0;
     int size = 0;
-    std::vector<int> rows;         // R_k, ascending
-    std::size_t a_offset = 0;      // into local_A_: |R_k|×size, column-major
-    std::size_t w2_offset = 0;     // into packed W²
-    std::size_t map_offset = 0;    // into value_map_: r(r+1)/2 positions (column b, rows a ≥ b)
+    std::vector<int> rows;       // R_k, ascending
+    std::size_t a_offset = 0;    // into local_A_: |R_k|×size, column-major
+    std::size_t w2_offset = 0;   // into packed W²
+    std::size_t map_offset = 0;  // into value_map_: r(r+1)/2 positions (column b, rows a ≥ b)
     bool dense = false;
   };
 
   Eigen::Index m_ = 0;
   std::vector<BlockData> blocks_;
-  std::vector<int> dense_blocks_;     // indices into blocks_
+  std::vector<int> dense_blocks_;  // indices into blocks_
   std::vector<double> local_A_;
-  std::vector<int> nnz_to_local_;     // A.valuePtr()[p] → local_A_ index
+  std::vector<int> nnz_to_local_;  // A.valuePtr()[p] → local_A_ index
   std::vector<int> value_map_;
   std::vector<int> col_ptr_, row_ind_;  // lower triangle of M_s
   std::vector<int> diag_pos_;
   std::vector<double> values_;
-  std::vector<double> packed_W2_;     // copy from the last factor() (for multiply)
+  std::vector<double> packed_W2_;  // copy from the last factor() (for multiply)
   std::vector<double> scratch_;
   SparseCholesky cholesky_;
   double shift_ = 0;
 
   // Dense-column Schur complement data, refreshed per factorisation.
-  Eigen::MatrixXd dense_D_;        // m × k
-  Eigen::MatrixXd dense_Minv_D_;   // M_s⁻¹ D
+  Eigen::MatrixXd dense_D_;       // m × k
+  Eigen::MatrixXd dense_Minv_D_;  // M_s⁻¹ D
   Eigen::LDLT<Eigen::MatrixXd> dense_schur_;
 };
 

@@ -24,7 +24,8 @@ std::vector<std::string> ConicProblem::validate() const {
     say("b has " + std::to_string(b.size()) + " entries but A has " + std::to_string(m) + " rows");
   }
   if (c.size() != n) {
-    say("c has " + std::to_string(c.size()) + " entries but A has " + std::to_string(n) + " columns");
+    say("c has " + std::to_string(c.size()) + " entries but A has " + std::to_string(n) +
+        " columns");
   }
   if (cones.num_nonneg < 0) say("cones.num_nonneg is negative");
   for (std::size_t k = 0; k < cones.soc_dims.size(); ++k) {

@@ -1,12 +1,12 @@
 // CBF (Conic Benchmark Format v3, Friberg 2016, https://cblib.zib.de/doc/format3.pdf) and
 // free-format MPS writers; a CBF reader for the subset written here.
 
-#include "rbla/conic/io.hpp"
-
 #include <fstream>
 #include <iomanip>
 #include <map>
 #include <sstream>
+
+#include "rbla/conic/io.hpp"
 
 namespace rbla::conic {
 
@@ -23,7 +23,8 @@ std::ofstream open_for_writing(const std::string& path) {
 
 void write_cbf(const ConicProblem& p, std::ostream& out) {
   const auto messages = p.validate();
-  if (!messages.empty()) throw ConicSetupError::from_messages("write_cbf: invalid problem", messages);
+  if (!messages.empty())
+    throw ConicSetupError::from_messages("write_cbf: invalid problem", messages);
   const auto precision = out.precision(17);
   const Eigen::Index m = p.A.rows(), n = p.A.cols();
   const std::size_t num_cones = (p.cones.num_nonneg > 0 ? 1 : 0) + p.cones.soc_dims.size();
@@ -45,7 +46,8 @@ void write_cbf(const ConicProblem& p, std::ostream& out) {
   }
   long nnz_A = 0;
   for (Eigen::Index j = 0; j < n; ++j) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(p.A, j); it; ++it) nnz_A += it.value() != 0.0;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(p.A, j); it; ++it)
+      nnz_A += it.value() != 0.0;
   }
   if (nnz_A > 0) {
     out << "ACOORD\n" << nnz_A << '\n';
@@ -100,8 +102,10 @@ ConicProblem read_cbf(std::istream& in) {
       if (std::stoi(line) > 3) throw fail("unsupported CBF version " + line);
     } else if (line == "OBJSENSE") {
       if (!next_line(line)) throw fail("missing OBJSENSE value");
-      if (line == "MAX") sense = -1.0;
-      else if (line != "MIN") throw fail("unknown OBJSENSE " + line);
+      if (line == "MAX")
+        sense = -1.0;
+      else if (line != "MIN")
+        throw fail("unknown OBJSENSE " + line);
     } else if (line == "VAR") {
       if (!next_line(line)) throw fail("missing VAR header");
       std::istringstream header(line);
@@ -165,7 +169,8 @@ ConicProblem read_cbf(std::istream& in) {
   if (n < 0) throw fail("no VAR section");
   p.A.resize(m, n);
   for (const auto& t : triplets) {
-    if (t.row() < 0 || t.row() >= m || t.col() < 0 || t.col() >= n) throw fail("ACOORD index out of range");
+    if (t.row() < 0 || t.row() >= m || t.col() < 0 || t.col() >= n)
+      throw fail("ACOORD index out of range");
   }
   p.A.setFromTriplets(triplets.begin(), triplets.end());
   p.A.makeCompressed();
@@ -180,7 +185,8 @@ ConicProblem read_cbf(std::istream& in) {
     p.c[j] += sense * v;
   }
   const auto messages = p.validate();
-  if (!messages.empty()) throw ConicSetupError::from_messages("read_cbf: invalid problem", messages);
+  if (!messages.empty())
+    throw ConicSetupError::from_messages("read_cbf: invalid problem", messages);
   return p;
 }
 
@@ -192,8 +198,10 @@ ConicProblem read_cbf_file(const std::string& path) {
 
 void write_mps(const ConicProblem& p, std::ostream& out) {
   const auto messages = p.validate();
-  if (!messages.empty()) throw ConicSetupError::from_messages("write_mps: invalid problem", messages);
-  if (!p.cones.soc_dims.empty()) throw ConicSetupError("write_mps: MPS cannot express second-order cones");
+  if (!messages.empty())
+    throw ConicSetupError::from_messages("write_mps: invalid problem", messages);
+  if (!p.cones.soc_dims.empty())
+    throw ConicSetupError("write_mps: MPS cannot express second-order cones");
   const auto precision = out.precision(17);
   const Eigen::Index m = p.A.rows(), n = p.A.cols();
   out << "NAME rbla_conic\nROWS\n N obj\n";

@@ -6,9 +6,12 @@ namespace rbla::conic {
 
 const char* to_string(Ordering ordering) {
   switch (ordering) {
-    case Ordering::Amd: return "AMD";
-    case Ordering::Metis: return "METIS";
-    case Ordering::CholmodDefault: return "CHOLMOD default";
+    case Ordering::Amd:
+      return "AMD";
+    case Ordering::Metis:
+      return "METIS";
+    case Ordering::CholmodDefault:
+      return "CHOLMOD default";
   }
   return "unknown";
 }
@@ -27,6 +30,7 @@ std::vector<std::string> Settings::validate() const {
   positive("reduced_tol_gap_abs", reduced_tol_gap_abs);
   positive("reduced_tol_gap_rel", reduced_tol_gap_rel);
   positive("reduced_tol_feas", reduced_tol_feas);
+  positive("reduced_tol_infeas", reduced_tol_infeas);
   positive("time_limit_seconds", time_limit_seconds);
   positive("step_min", step_min);
   positive("stall_step", stall_step);
@@ -37,7 +41,8 @@ std::vector<std::string> Settings::validate() const {
   positive("refine_tol_rel", refine_tol_rel);
   positive("dense_column_ratio", dense_column_ratio);
   if (max_iter < 0) messages.push_back("max_iter must be >= 0");
-  if (!(step_fraction > 0 && step_fraction < 1)) messages.push_back("step_fraction must be in (0, 1)");
+  if (!(step_fraction > 0 && step_fraction < 1))
+    messages.push_back("step_fraction must be in (0, 1)");
   if (equilibrate_max_iter < 0) messages.push_back("equilibrate_max_iter must be >= 0");
   if (equilibrate_min_scaling > 1 || equilibrate_max_scaling < 1) {
     messages.push_back("equilibrate_min_scaling <= 1 <= equilibrate_max_scaling is required");

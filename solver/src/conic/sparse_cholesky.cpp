@@ -1,10 +1,10 @@
 #include "sparse_cholesky.hpp"
 
-#include "rbla/conic/problem.hpp"
-
 #include <cholmod.h>
 
 #include <cstring>
+
+#include "rbla/conic/problem.hpp"
 
 namespace rbla::conic::detail {
 
@@ -71,7 +71,8 @@ void SparseCholesky::analyze(int n, const int* col_ptr, const int* row_ind) {
   a.packed = 1;
   impl_->factor = cholmod_analyze(&a, &c);
   if (!impl_->factor || c.status < CHOLMOD_OK) {
-    throw ConicSetupError("CHOLMOD symbolic analysis failed (status " + std::to_string(c.status) + ")");
+    throw ConicSetupError("CHOLMOD symbolic analysis failed (status " + std::to_string(c.status) +
+                          ")");
   }
 }
 

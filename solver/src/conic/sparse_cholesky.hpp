@@ -3,13 +3,12 @@
 // (CSC). Symbolic analysis (fill-reducing ordering + supernodal structure) is done once per
 // pattern; each numeric factorisation reuses it (Ceres' SparseCholesky idea).
 
-#include "rbla/conic/settings.hpp"
-
 #include <Eigen/Core>
-
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "rbla/conic/settings.hpp"
 
 namespace rbla::conic::detail {
 

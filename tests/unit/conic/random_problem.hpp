@@ -2,20 +2,20 @@
 // Deterministic random conic problems with a known strictly feasible primal-dual pair:
 // b = A x0, c = Aᵀy0 + z0 with x0, z0 in the interior of K, so an optimum exists.
 
-#include "rbla/conic/problem.hpp"
-
 #include <random>
+
+#include "rbla/conic/problem.hpp"
 
 namespace rbla::conic::testing {
 
 struct RandomProblemOptions {
   int rows = 100;
   int num_nonneg = 150;
-  int num_soc3 = 60;        ///< number of 3-dimensional cones
+  int num_soc3 = 60;  ///< number of 3-dimensional cones
   int nnz_per_column = 3;
-  int band = 0;             ///< > 0: a column's rows lie within `band` of a position moving
-                            ///< with the column index (a banded M, like a structure's)
-  int dense_columns = 0;    ///< extra nonnegative columns touching every row (placed first)
+  int band = 0;           ///< > 0: a column's rows lie within `band` of a position moving
+                          ///< with the column index (a banded M, like a structure's)
+  int dense_columns = 0;  ///< extra nonnegative columns touching every row (placed first)
   unsigned seed = 1;
 };
 
@@ -40,7 +40,8 @@ inline ConicProblem random_feasible_problem(const RandomProblemOptions& o) {
       }
     }
   }
-  for (int i = 0; i < o.rows; ++i) t.emplace_back(i, o.dense_columns + (i % std::max(1, o.num_nonneg)), 1.0);
+  for (int i = 0; i < o.rows; ++i)
+    t.emplace_back(i, o.dense_columns + (i % std::max(1, o.num_nonneg)), 1.0);
   p.A.resize(o.rows, n);
   p.A.setFromTriplets(t.begin(), t.end());
   p.A.makeCompressed();

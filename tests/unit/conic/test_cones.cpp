@@ -1,9 +1,9 @@
 // Identities of the cone operations (NT scaling, Jordan algebra, step to the boundary).
-#include "../../../solver/src/conic/cone.hpp"
-
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "../../../solver/src/conic/cone.hpp"
 
 using namespace rbla::conic::detail;
 

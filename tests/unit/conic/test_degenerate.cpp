@@ -1,11 +1,11 @@
 // Degenerate and badly scaled problems: cones at the apex, redundant and empty rows, data
 // spanning 1e-6 .. 1e6.
-#include "rbla/conic/solver.hpp"
-#include "test_helpers.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
+
+#include "rbla/conic/solver.hpp"
+#include "test_helpers.hpp"
 
 using namespace rbla::conic;
 using namespace rbla::conic::testing;
@@ -57,12 +57,11 @@ TEST(ConicDegenerate, ManyVariablesAtZeroInAnLp) {
 TEST(ConicDegenerate, RedundantRowsAndAnEmptyRow) {
   // The small LP of test_lp.cpp with its first row repeated twice (once scaled by 2) and an
   // all-zero row with b = 0: M is singular, the optimum (−5 at x = (3, 1)) is unchanged.
-  const ConicProblem p = make_problem(5, 4,
-                                      {1, 1, 1, 0,  //
-                                       1, 3, 0, 1,  //
-                                       1, 1, 1, 0,  //
-                                       0, 0, 0, 0,  //
-                                       2, 2, 2, 0},
+  const ConicProblem p = make_problem(5, 4, {1, 1, 1, 0,  //
+                                             1, 3, 0, 1,  //
+                                             1, 1, 1, 0,  //
+                                             0, 0, 0, 0,  //
+                                             2, 2, 2, 0},
                                       {4, 6, 4, 0, 8}, {-1, -2, 0, 0}, 4);
   const Solution sol = solve(p);
   ASSERT_EQ(sol.info.status, SolveStatus::Solved) << sol.info.brief_report();

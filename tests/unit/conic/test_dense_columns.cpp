@@ -1,9 +1,9 @@
 // A column touching every row is kept out of the sparse factor; the answer must not change.
-#include "rbla/conic/solver.hpp"
-#include "random_problem.hpp"
-#include "test_helpers.hpp"
-
 #include <gtest/gtest.h>
+
+#include "random_problem.hpp"
+#include "rbla/conic/solver.hpp"
+#include "test_helpers.hpp"
 
 using namespace rbla::conic;
 using namespace rbla::conic::testing;
@@ -31,8 +31,10 @@ TEST(ConicDenseColumns, SameSolutionWithAndWithoutDenseColumnHandling) {
   EXPECT_LT(a.info.num_factor_nonzeros * 2, b.info.num_factor_nonzeros);
   const double scale = std::max(1.0, std::abs(b.info.primal_objective));
   EXPECT_NEAR(a.info.primal_objective, b.info.primal_objective, 1e-7 * scale);
-  EXPECT_LT((a.x - b.x).lpNorm<Eigen::Infinity>(), 1e-4 * std::max(1.0, b.x.lpNorm<Eigen::Infinity>()));
-  EXPECT_LT((p.A * a.x - p.b).lpNorm<Eigen::Infinity>(), 1e-6 * std::max(1.0, p.b.lpNorm<Eigen::Infinity>()));
+  EXPECT_LT((a.x - b.x).lpNorm<Eigen::Infinity>(),
+            1e-4 * std::max(1.0, b.x.lpNorm<Eigen::Infinity>()));
+  EXPECT_LT((p.A * a.x - p.b).lpNorm<Eigen::Infinity>(),
+            1e-6 * std::max(1.0, p.b.lpNorm<Eigen::Infinity>()));
 }
 
 TEST(ConicDenseColumns, DetectionFollowsTheThresholds) {

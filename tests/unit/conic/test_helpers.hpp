@@ -1,14 +1,13 @@
 #pragma once
 // Small builders shared by the conic tests.
 
-#include "rbla/conic/problem.hpp"
-
 #include <Eigen/SparseCore>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
+
+#include "rbla/conic/problem.hpp"
 
 namespace rbla::conic::testing {
 

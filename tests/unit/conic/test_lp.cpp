@@ -1,10 +1,10 @@
 // Linear programs with known optima and their infeasible / unbounded twins.
-#include "rbla/conic/solver.hpp"
-#include "test_helpers.hpp"
-
 #include <gtest/gtest.h>
 
 #include <sstream>
+
+#include "rbla/conic/solver.hpp"
+#include "test_helpers.hpp"
 
 using namespace rbla::conic;
 using namespace rbla::conic::testing;

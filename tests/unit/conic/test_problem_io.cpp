@@ -1,16 +1,16 @@
 // CBF round trip, and an MPS dump solved by an independent LP solver (COIN-OR Clp) if present.
-#include "rbla/conic/io.hpp"
-#include "rbla/conic/solver.hpp"
-#include "random_problem.hpp"
-#include "test_helpers.hpp"
-
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
+
+#include "random_problem.hpp"
+#include "rbla/conic/io.hpp"
+#include "rbla/conic/solver.hpp"
+#include "test_helpers.hpp"
 
 using namespace rbla::conic;
 using namespace rbla::conic::testing;
@@ -80,7 +80,8 @@ TEST(ConicProblemIo, MpsDumpSolvedByClpMatches) {
   const auto mps = temp_path("lp.mps");
   const auto out = temp_path("lp.sol");
   write_mps(p, mps.string());
-  const std::string command = "clp " + mps.string() + " -primalS -solu " + out.string() + " > /dev/null 2>&1";
+  const std::string command =
+      "clp " + mps.string() + " -primalS -solu " + out.string() + " > /dev/null 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream solution(out);
   std::string first_line;
@@ -92,5 +93,6 @@ TEST(ConicProblemIo, MpsDumpSolvedByClpMatches) {
 
   const Solution sol = solve(p);
   ASSERT_EQ(sol.info.status, SolveStatus::Solved);
-  EXPECT_NEAR(sol.info.primal_objective, clp_objective, 1e-6 * std::max(1.0, std::abs(clp_objective)));
+  EXPECT_NEAR(sol.info.primal_objective, clp_objective,
+              1e-6 * std::max(1.0, std::abs(clp_objective)));
 }

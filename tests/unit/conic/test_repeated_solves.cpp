@@ -1,8 +1,8 @@
 // A ConicSolver reuses its symbolic factorisation across updates of b, c and A's values.
-#include "rbla/conic/solver.hpp"
-#include "random_problem.hpp"
-
 #include <gtest/gtest.h>
+
+#include "random_problem.hpp"
+#include "rbla/conic/solver.hpp"
 
 using namespace rbla::conic;
 using namespace rbla::conic::testing;
@@ -30,7 +30,8 @@ TEST(ConicRepeatedSolves, UpdatesMatchFreshSolvesAndKeepTheSymbolicFactor) {
     // into the interior), c unchanged plus a shift along the interior of K*.
     Eigen::VectorXd x1 = first.x;
     for (Eigen::Index j = 0; j < q.cones.num_nonneg; ++j) x1[j] += 0.5;
-    for (std::size_t k = 0; k < q.cones.soc_dims.size(); ++k) x1[q.cones.num_nonneg + 3 * static_cast<Eigen::Index>(k)] += 0.5;
+    for (std::size_t k = 0; k < q.cones.soc_dims.size(); ++k)
+      x1[q.cones.num_nonneg + 3 * static_cast<Eigen::Index>(k)] += 0.5;
     q.b = q.A * x1;
     for (Eigen::Index j = 0; j < q.cones.num_nonneg; ++j) q.c[j] += 0.1 * step;
 
@@ -46,7 +47,9 @@ TEST(ConicRepeatedSolves, UpdatesMatchFreshSolvesAndKeepTheSymbolicFactor) {
     // Deterministic: the reused solver follows the same iterates as a fresh one.
     EXPECT_EQ(reused.info.iterations, fresh.info.iterations);
   }
-  EXPECT_EQ(solver.num_symbolic_analyses(), 1);
+  // One analysis, plus at most one more if the bordered dense-column solve ever needed the
+  // fallback factor (then kept for all later solves): never one per update.
+  EXPECT_LE(solver.num_symbolic_analyses(), 2);
 }
 
 TEST(ConicRepeatedSolves, WrongLengthsAreSetupErrors) {

@@ -1,10 +1,10 @@
 // Second-order cone programs with closed-form optima and their infeasible / unbounded twins.
-#include "rbla/conic/solver.hpp"
-#include "test_helpers.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
+
+#include "rbla/conic/solver.hpp"
+#include "test_helpers.hpp"
 
 using namespace rbla::conic;
 using namespace rbla::conic::testing;

@@ -1,11 +1,11 @@
 // Setup errors are typed exceptions with readable messages; statuses have names.
-#include "rbla/conic/solver.hpp"
-#include "test_helpers.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+
+#include "rbla/conic/solver.hpp"
+#include "test_helpers.hpp"
 
 using namespace rbla::conic;
 using namespace rbla::conic::testing;

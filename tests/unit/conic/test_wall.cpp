@@ -4,17 +4,17 @@
 // Oracle (METHOD.md, "A free exact oracle"): for an in-plane load on a wall symmetric about its
 // mid-plane, some optimum has no out-of-plane friction, so the axis-aligned 4-sided pyramid LP
 // gives the exact α of the cone problem. The LP is also dumped to MPS and solved by Clp.
-#include "rbla/conic/io.hpp"
-#include "rbla/conic/solver.hpp"
-#include "test_helpers.hpp"
-#include "wall_problem.hpp"
-
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
+
+#include "rbla/conic/io.hpp"
+#include "rbla/conic/solver.hpp"
+#include "test_helpers.hpp"
+#include "wall_problem.hpp"
 
 using namespace rbla::conic;
 using namespace rbla::conic::testing;
@@ -61,7 +61,8 @@ TEST(ConicWall, PyramidLpAgreesWithClp) {
   WallOptions o = small_wall();
   o.pyramid = true;
   const ConicProblem p = make_wall_problem(o).problem;
-  const auto base = std::filesystem::temp_directory_path() / ("rbla_conic_wall_" + std::to_string(::getpid()));
+  const auto base =
+      std::filesystem::temp_directory_path() / ("rbla_conic_wall_" + std::to_string(::getpid()));
   const std::string mps = base.string() + ".mps", out = base.string() + ".sol";
   write_mps(p, mps);
   const std::string command = "clp " + mps + " -primalS -solu " + out + " > /dev/null 2>&1";
@@ -113,8 +114,10 @@ TEST(ConicWall, DownwardLiveLoadIsUnboundedWithCertificate) {
   std::vector<Eigen::Triplet<double>> t;
   for (Eigen::Index j = 0; j < p.A.outerSize(); ++j) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(p.A, j); it; ++it) {
-      if (j == 0) t.emplace_back(it.row() + 2, 0, -it.value());  // x-force row → z-force row, down
-      else t.emplace_back(it.row(), j, it.value());
+      if (j == 0)
+        t.emplace_back(it.row() + 2, 0, -it.value());  // x-force row → z-force row, down
+      else
+        t.emplace_back(it.row(), j, it.value());
     }
   }
   p.A.setFromTriplets(t.begin(), t.end());

@@ -18,12 +18,11 @@
 //            i.e. |T1| ≤ μN and |T2| ≤ μN, with one extra row a + b − c − d = 0 per point
 //            (the circumscribed 4-sided pyramid: an LP).
 
-#include "rbla/conic/problem.hpp"
-
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <vector>
+
+#include "rbla/conic/problem.hpp"
 
 namespace rbla::conic::testing {
 
@@ -82,7 +81,8 @@ inline WallProblem make_wall_problem(const WallOptions& o) {
     }
     interfaces.push_back(f);
   };
-  for (int i : courses[0]) bed(-1, i, blocks[static_cast<std::size_t>(i)].x0, blocks[static_cast<std::size_t>(i)].x1, 0.0);
+  for (int i : courses[0])
+    bed(-1, i, blocks[static_cast<std::size_t>(i)].x0, blocks[static_cast<std::size_t>(i)].x1, 0.0);
   for (int j = 0; j + 1 < o.ny; ++j) {
     for (int lo : courses[static_cast<std::size_t>(j)]) {
       for (int up : courses[static_cast<std::size_t>(j) + 1]) {
@@ -141,7 +141,8 @@ inline WallProblem make_wall_problem(const WallOptions& o) {
           if (block < 0) continue;
           const int r = 6 * block;
           const Eigen::Vector3d force = sign * directions[static_cast<std::size_t>(d)];
-          const Eigen::Vector3d moment = (point - blocks[static_cast<std::size_t>(block)].centroid).cross(force);
+          const Eigen::Vector3d moment =
+              (point - blocks[static_cast<std::size_t>(block)].centroid).cross(force);
           for (int k = 0; k < 3; ++k) {
             if (force[k] != 0.0) t.emplace_back(r + k, column + d, force[k]);
             if (std::abs(moment[k]) > 1e-14) t.emplace_back(r + 3 + k, column + d, moment[k]);

@@ -3,7 +3,6 @@
 // per-iteration history (for convergence plots).
 
 #include <Eigen/Core>
-
 #include <string>
 #include <vector>
 
@@ -12,8 +11,9 @@ namespace rbla::conic {
 enum class SolveStatus {
   Solved,            ///< all tolerances met; x, y, z are the primal/dual solution
   SolvedInaccurate,  ///< stopped early, but the reduced tolerances are met
-  PrimalInfeasible,  ///< y is a certificate: bᵀy = 1, z = −Aᵀy ∈ K* (up to tol_infeas); x is NaN
-  DualInfeasible,    ///< x is a certificate: cᵀx = −1, x ∈ K, A x ≈ 0 (primal unbounded); y, z NaN
+  PrimalInfeasible,  ///< y is a certificate: bᵀy = 1, z = −Aᵀy ∈ K* up to tol_infeas (or
+                     ///< reduced_tol_infeas, see failure_reason / certificate_residual); x NaN
+  DualInfeasible,  ///< x is a certificate: cᵀx = −1, x ∈ K, A x ≈ 0 (primal unbounded); y, z NaN
   IterationLimit,    ///< max_iter reached; x, y, z are the last iterate
   TimeLimit,         ///< time_limit_seconds reached; last iterate
   NumericalFailure,  ///< factorisation failed after all retries, or the steps stalled
@@ -31,13 +31,13 @@ struct IterationRow {
   double gap_rel = 0;           ///< see Settings::tol_gap_rel
   double res_primal = 0;        ///< see Settings::tol_feas
   double res_dual = 0;
-  double mu = 0;                ///< complementarity (x̂ᵀẑ + τκ)/(ν+1), scaled problem
-  double tau = 0;               ///< homogeneous embedding variables
+  double mu = 0;   ///< complementarity (x̂ᵀẑ + τκ)/(ν+1), scaled problem
+  double tau = 0;  ///< homogeneous embedding variables
   double kappa = 0;
-  double step = 0;              ///< step length that produced this iterate (0 at iteration 0)
-  double sigma = 0;             ///< centring parameter of that step
-  int refine_steps = 0;         ///< iterative-refinement steps in the solves of that step
-  double elapsed_seconds = 0;   ///< since the start of solve()
+  double step = 0;             ///< step length that produced this iterate (0 at iteration 0)
+  double sigma = 0;            ///< centring parameter of that step
+  int refine_steps = 0;        ///< iterative-refinement steps in the solves of that step
+  double elapsed_seconds = 0;  ///< since the start of solve()
 };
 
 struct Info {
@@ -52,16 +52,22 @@ struct Info {
   double certificate_residual = 0;  ///< ‖Aᵀȳ + z̄‖∞ or ‖A x̄‖∞ when infeasible, else 0
   double step = 0;                  ///< last step length
 
-  double setup_seconds = 0;      ///< construction: validation, equilibration, pattern (incl. symbolic)
-  double symbolic_seconds = 0;   ///< CHOLMOD analyse (part of setup)
-  double assembly_seconds = 0;   ///< filling M's values, summed over iterations
-  double factor_seconds = 0;     ///< CHOLMOD numeric factorisations incl. retries and dense-column Schur
-  double solve_seconds = 0;      ///< triangular solves incl. refinement
-  double total_seconds = 0;      ///< solve() wall time (excludes setup)
+  double setup_seconds = 0;  ///< construction: validation, equilibration, pattern (incl. symbolic)
+  double symbolic_seconds = 0;  ///< CHOLMOD analyse (part of setup)
+  double assembly_seconds = 0;  ///< filling M's values, summed over iterations
+  double factor_seconds =
+      0;  ///< CHOLMOD numeric factorisations incl. retries and dense-column Schur
+  double solve_seconds = 0;  ///< triangular solves incl. refinement
+  double total_seconds = 0;  ///< solve() wall time (excludes setup)
 
+  std::string failure_reason;    ///< why a NumericalFailure happened (kept when the
+                                 ///< reduced-accuracy fallback made it SolvedInaccurate)
   int num_refactor_retries = 0;  ///< factorisations repeated with larger regularisation
   int num_dense_columns = 0;     ///< columns handled outside the sparse factor
-  long num_factor_nonzeros = 0;  ///< nnz(L)
+  /// True if the bordered dense-column solve lost accuracy and the dense columns were moved into
+  /// the sparse factor for the rest of the solve (one extra symbolic analysis).
+  bool dense_column_fallback = false;
+  long num_factor_nonzeros = 0;  ///< nnz(L) (with dense columns outside it, even after a fallback)
   std::string backend;           ///< e.g. "CHOLMOD supernodal LL' (AMD)"
   std::vector<IterationRow> history;
 

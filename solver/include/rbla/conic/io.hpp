@@ -1,10 +1,10 @@
 #pragma once
 // Exact problem dumps for bug reports and cross-checks with other solvers.
 
-#include "rbla/conic/problem.hpp"
-
 #include <iosfwd>
 #include <string>
+
+#include "rbla/conic/problem.hpp"
 
 namespace rbla::conic {
 

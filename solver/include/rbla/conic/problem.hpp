@@ -10,7 +10,6 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,8 +18,8 @@ namespace rbla::conic {
 
 /// Cone K = R_+^{num_nonneg} × Q^{soc_dims[0]} × … in variable order.
 struct ConeSpec {
-  Eigen::Index num_nonneg = 0;          ///< size of the leading nonnegative orthant
-  std::vector<Eigen::Index> soc_dims;   ///< dimension of each second-order cone (≥ 2), in order
+  Eigen::Index num_nonneg = 0;         ///< size of the leading nonnegative orthant
+  std::vector<Eigen::Index> soc_dims;  ///< dimension of each second-order cone (≥ 2), in order
 
   /// Total number of variables covered: num_nonneg + Σ soc_dims.
   Eigen::Index dimension() const;

@@ -18,16 +18,16 @@ struct Settings {
   // Solved when all of:
   //   res_primal = ‖A x − b‖∞ / max(1, ‖b‖∞ + ‖x‖∞)                  ≤ tol_feas
   //   res_dual   = ‖Aᵀy + z − c‖∞ / max(1, ‖c‖∞ + ‖y‖∞ + ‖z‖∞)       ≤ tol_feas
-  //   gap_abs = |cᵀx − bᵀy| ≤ tol_gap_abs   or
+  //   gap_abs = max(|cᵀx − bᵀy|, xᵀz) ≤ tol_gap_abs   or
   //   gap_rel = gap_abs / max(1, min(|cᵀx|, |bᵀy|)) ≤ tol_gap_rel
-  double tol_gap_abs = 1e-8;   ///< absolute duality gap, objective units
-  double tol_gap_rel = 1e-8;   ///< relative duality gap, dimensionless
-  double tol_feas = 1e-8;      ///< relative primal and dual residual, dimensionless
+  double tol_gap_abs = 1e-8;  ///< absolute duality gap, objective units
+  double tol_gap_rel = 1e-8;  ///< relative duality gap, dimensionless
+  double tol_feas = 1e-8;     ///< relative primal and dual residual, dimensionless
   // Primal infeasible when bᵀŷ > 0 and, with ȳ = ŷ/bᵀŷ, z̄ = ẑ/bᵀŷ (so bᵀȳ = 1, z̄ ∈ K*):
   //   ‖Aᵀȳ + z̄‖∞ ≤ tol_infeas.
   // Dual infeasible (unbounded) when cᵀx̂ < 0 and, with x̄ = x̂/(−cᵀx̂) ∈ K:  ‖A x̄‖∞ ≤ tol_infeas.
   // (A feasible problem can only pass the primal test if its solutions have ‖x‖₁ ≥ 1/tol_infeas.)
-  double tol_infeas = 1e-8;    ///< certificate residual, units of A
+  double tol_infeas = 1e-8;  ///< certificate residual, units of A
   // When the iteration stops without meeting the tolerances above (iteration or time limit,
   // numerical failure, stalled steps), the best iterate seen (smallest max of the three ratios
   // residual/tolerance) is reported as SolvedInaccurate if it meets the same tests with these
@@ -35,9 +35,14 @@ struct Settings {
   double reduced_tol_gap_abs = 5e-5;
   double reduced_tol_gap_rel = 5e-5;
   double reduced_tol_feas = 1e-4;
+  // An infeasibility certificate whose residual stops improving (no halving for more than
+  // stall_max_iter iterations) while τ < κ is accepted at this looser tolerance; also at the
+  // fallback above. Info::certificate_residual and Info::failure_reason then say so.
+  double reduced_tol_infeas = 1e-5;
 
-  int max_iter = 100;                                                   ///< interior-point iterations
-  double time_limit_seconds = std::numeric_limits<double>::infinity();  ///< wall time, checked per iteration
+  int max_iter = 100;  ///< interior-point iterations
+  double time_limit_seconds =
+      std::numeric_limits<double>::infinity();  ///< wall time, checked per iteration
 
   // ---- Step ----
   double step_fraction = 0.99;  ///< fraction of the step to the cone boundary (0, 1)
@@ -48,8 +53,8 @@ struct Settings {
   int stall_max_iter = 5;
 
   // ---- Scaling ----
-  bool equilibrate = true;          ///< Ruiz equilibration of A (plus scalar scaling of b, c)
-  int equilibrate_max_iter = 15;    ///< Ruiz sweeps
+  bool equilibrate = true;                ///< Ruiz equilibration of A (plus scalar scaling of b, c)
+  int equilibrate_max_iter = 15;          ///< Ruiz sweeps
   double equilibrate_min_scaling = 1e-4;  ///< clamp of the accumulated row/column factors and
   double equilibrate_max_scaling = 1e4;   ///< of the scalar factors of b and c
 
@@ -60,11 +65,13 @@ struct Settings {
   /// Recovery when CHOLMOD reports "not positive definite": δ ← δ · reg_retry_factor, refactor.
   double reg_retry_factor = 100.0;
   int reg_max_retries = 8;
-  /// Iterative refinement, two levels: each normal-equation solve is refined on the exact,
-  /// unregularised M until ‖rhs − M dy‖∞ ≤ refine_tol_rel · (1 + ‖rhs‖∞); each Newton direction
-  /// is then refined on its primal and gap equations until
-  /// max(‖A dx − b dτ + η r_p‖∞, |e_gap|) ≤ max(refine_tol_rel · (1 + ‖b‖∞ τ), 1e-3 ‖r_p‖∞)
-  /// (scaled problem). Both stop early when the residual no longer halves.
+  /// Iterative refinement, two levels (scaled problem). The solve for q (M q = A W² c + b, used
+  /// by every direction) runs preconditioned CG on the exact, unregularised M until
+  /// ‖rhs − M q‖∞ ≤ refine_tol_rel · (1 + ‖rhs‖∞). Each Newton direction is then corrected on
+  /// its primal and gap equations until max(‖A dx − b dτ + η r_p‖∞, |e_gap|) ≤
+  /// max(refine_tol_rel · (1 + ‖b‖∞ τ), 1e-3 ‖r_p‖∞); the first correction is one plain solve,
+  /// later ones use CG. Every loop stops after refine_max_iter steps or when the error stops
+  /// halving.
   int refine_max_iter = 10;
   double refine_tol_rel = 1e-13;
   Ordering ordering = Ordering::Amd;
@@ -80,7 +87,7 @@ struct Settings {
   int dense_column_max = 20;
 
   // ---- Output ----
-  bool verbose = false;              ///< write the iteration log
+  bool verbose = false;                ///< write the iteration log
   std::ostream* log_stream = nullptr;  ///< where the log goes; null with verbose = std::cout
 
   /// Readable messages for every invalid field; empty if valid.

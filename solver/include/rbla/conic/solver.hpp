@@ -1,14 +1,20 @@
 #pragma once
 // Sparse primal–dual interior-point solver for ConicProblem (LP + second-order cones):
-// homogeneous self-dual embedding, Nesterov–Todd scaling, Mehrotra predictor–corrector, Ruiz equilibration, normal equations A W² Aᵀ factored by CHOLMOD
-// (symbolic analysis once per ConicSolver), dense columns by a bordered solve.
+// homogeneous self-dual embedding, Nesterov–Todd scaling, Mehrotra predictor–corrector, Ruiz
+// equilibration, normal equations A W² Aᵀ factored by CHOLMOD (symbolic analysis once per
+// ConicSolver), dense columns by a bordered solve, two-level iterative refinement (PCG on the
+// normal equations, correction of the Newton direction's primal/gap residuals). If the bordered
+// dense-column solve loses accuracy late in a solve, the dense columns are moved into the sparse
+// factor for the rest of that solve (one extra symbolic analysis, kept for later solves).
+// Not supported: free variables (model them as differences of nonnegatives, or bound them),
+// semidefinite / exponential cones, warm starts.
+
+#include <functional>
+#include <memory>
 
 #include "rbla/conic/info.hpp"
 #include "rbla/conic/problem.hpp"
 #include "rbla/conic/settings.hpp"
-
-#include <functional>
-#include <memory>
 
 namespace rbla::conic {
 
