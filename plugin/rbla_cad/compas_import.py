@@ -47,50 +47,8 @@ class ConversionError(Exception):
     """The input is not an assembly this converter understands."""
 
 
-# --------------------------------------------------------------------------------------------
-# Geometry helpers
-# --------------------------------------------------------------------------------------------
-
-def _sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def _cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def volume_centroid(vertices, faces):
-    """Signed volume and centroid of a closed polyhedron (divergence theorem, fan triangles)."""
-    o = vertices[0]
-    vol6 = 0.0
-    s = [0.0, 0.0, 0.0]
-    for f in faces:
-        a = _sub(vertices[f[0]], o)
-        for k in range(1, len(f) - 1):
-            b = _sub(vertices[f[k]], o)
-            c = _sub(vertices[f[k + 1]], o)
-            v = _dot(a, _cross(b, c))
-            vol6 += v
-            for i in range(3):
-                s[i] += v * (a[i] + b[i] + c[i])
-    if vol6 == 0.0:
-        return 0.0, tuple(o)
-    return vol6 / 6.0, tuple(o[i] + s[i] / (4.0 * vol6) for i in range(3))
-
-
-def newell_normal(points):
-    n = [0.0, 0.0, 0.0]
-    m = len(points)
-    for i in range(m):
-        p, q = points[i], points[(i + 1) % m]
-        n[0] += (p[1] - q[1]) * (p[2] + q[2])
-        n[1] += (p[2] - q[2]) * (p[0] + q[0])
-        n[2] += (p[0] - q[0]) * (p[1] + q[1])
-    return tuple(n)
+# Geometry helpers are shared with the rest of the core (divergence-theorem volume, Newell normal).
+from .geometry import cross as _cross, dot as _dot, newell_normal, sub as _sub, volume_centroid  # noqa: E402
 
 
 def block_report(vertices, faces):
