@@ -392,7 +392,17 @@ std::string title_text(const model::Model& model, const AnalysisResult& result) 
 
 std::string subtitle_text(const model::Model& model, const AnalysisResult& result, const SvgView& view) {
   std::string text;
-  if (!model.title.empty()) text += model.title + " · ";
+  if (!model.title.empty()) {
+    // Long CAD titles would run off the picture: keep the first 40 bytes, cut at a UTF-8
+    // character boundary.
+    std::string title = model.title;
+    if (title.size() > 40) {
+      std::size_t cut = 40;
+      while (cut > 0 && (static_cast<unsigned char>(title[cut]) & 0xC0) == 0x80) --cut;
+      title = title.substr(0, cut) + "…";
+    }
+    text += title + " · ";
+  }
   text += std::string("friction ") + friction_words(result.friction_model) + " · cone " + cone_words(result) +
           " · formulation " + (result.planar ? std::string("planar") : std::string("3d")) + " · view along " +
           axis_name(view.view_axis);
