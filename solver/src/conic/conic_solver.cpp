@@ -393,19 +393,25 @@ Solution ConicSolver::Impl::solve() {
         out_dtau = (-eta * rg - b.dot(p) + c.dot(out_dx) + d_kappa / tau) / denominator;
         out_dy = p + q * out_dtau;
         out_dx += dxq * out_dtau;
-        out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
         out_dkappa = (d_kappa - kappa * out_dtau) / tau;
         // Refinement on the unreduced residuals: the normal equations lose accuracy through the
         // cancellation in A W² (Aᵀp + r₁) when W² is ill-conditioned (late iterations), so the
         // error of the primal equation  e_p = A dx − b dτ + η r_p  is measured directly (A dx is
         // accurate) and corrected by the same elimination with right-hand side (−e_p, 0, −e_g, 0).
-        // dx and dz are updated incrementally, which keeps W dz + W⁻¹dx unchanged.
+        // dx is updated incrementally and dz is formed once at the end from the dual equation,
+        // which keeps W dz + W⁻¹dx unchanged (the refinement never reads dz).
         double previous = std::numeric_limits<double>::infinity();
         for (int pass = 0; pass < s.refine_max_iter; ++pass) {
           ep = A * out_dx - b * out_dtau + eta * rp;
           const double eg = b.dot(out_dy) - c.dot(out_dx) - out_dkappa + eta * rg;
           const double error = std::max(inf_norm(ep), std::abs(eg));
-          if (error <= refine_target || !(error < 0.5 * previous)) {
+          // The plain first correction is not judged by the halving test: when the smallest
+          // eigenvalue of M falls below the static regularisation δ (nearly infeasible problems,
+          // where W² → 0 on most variables), one regularised solve removes only a fraction
+          // λ/(λ + δ) of the error along that eigenvector, and stopping there left ~40% of r_p in
+          // every direction: the embedding then shrank all iterates together and the
+          // infeasibility certificate stalled near 1e-5. CG on the exact M does remove it.
+          if (error <= refine_target || (pass >= 2 && !(error < 0.5 * previous))) {
             // An error above the residual being removed means the solves are not usable.
             if (error > std::max(1e3 * refine_target, inf_norm(rp))) refinement_failed = true;
             break;
@@ -420,9 +426,9 @@ Solution ConicSolver::Impl::solve() {
           out_dy += dp + q * ddtau;
           out_dx += ddx + dxq * ddtau;
           out_dtau += ddtau;
-          out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
           out_dkappa = (d_kappa - kappa * out_dtau) / tau;
         }
+        out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
       };
       // Largest step keeping x, z in K and τ, κ ≥ 0, measured in the scaled space around λ.
       auto max_step = [&](const Vec& ddx, const Vec& ddz, double dtau, double dkappa) {
@@ -486,6 +492,20 @@ Solution ConicSolver::Impl::solve() {
     last_step = alpha;
     last_sigma = sigma;
     last_refine = refine_steps;
+    // The embedding is homogeneous: scaling (x, y, z, τ, κ) by a positive factor changes no
+    // direction, step or normalised metric. On (nearly) infeasible problems the iterates can
+    // shrink together by many orders of magnitude, and then absolute floors (the refinement
+    // target) and underflow decide the outcome. Clarabel rescales by max(τ, κ) every iteration
+    // (DefaultVariables::rescale); here only when that leaves [1e-4, 1e4], so well-behaved
+    // solves keep their path.
+    const double scale = std::max(tau, kappa);
+    if (scale < 1e-4 || scale > 1e4) {
+      x /= scale;
+      y /= scale;
+      z /= scale;
+      tau /= scale;
+      kappa /= scale;
+    }
   }
 
   // Reduced-accuracy fallback for runs that stopped without meeting the tolerances.

@@ -208,15 +208,16 @@ void NormalEquations::solve_regularised(const Eigen::VectorXd& rhs, Eigen::Vecto
 
 void NormalEquations::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
   // M v = Σ_k A_k (W²_k (A_kᵀ v)) with plain loops: blocks are tiny (q = 1 or 3 typically).
+  // Called once per CG step: the work vectors are sized once, not per block.
   out.setZero(m_);
-  std::vector<double> u, w;
+  std::size_t max_q = 1;
+  for (const BlockData& bd : blocks_) max_q = std::max(max_q, static_cast<std::size_t>(bd.size));
+  std::vector<double> u(max_q), w(max_q);
   for (const BlockData& bd : blocks_) {
     const std::size_t r = bd.rows.size();
     const std::size_t q = static_cast<std::size_t>(bd.size);
     const double* Ak = local_A_.data() + bd.a_offset;  // column-major r×q
     const double* W2 = packed_W2_.data() + bd.w2_offset;
-    u.assign(q, 0.0);
-    w.assign(q, 0.0);
     for (std::size_t j = 0; j < q; ++j) {
       double sum = 0;
       for (std::size_t a = 0; a < r; ++a) sum += Ak[a + r * j] * v[bd.rows[a]];

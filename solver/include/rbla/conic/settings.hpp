@@ -71,7 +71,8 @@ struct Settings {
   /// its primal and gap equations until max(‖A dx − b dτ + η r_p‖∞, |e_gap|) ≤
   /// max(refine_tol_rel · (1 + ‖b‖∞ τ), 1e-3 ‖r_p‖∞); the first correction is one plain solve,
   /// later ones use CG. Every loop stops after refine_max_iter steps or when the error stops
-  /// halving.
+  /// halving (the correction loop only after its first CG correction: a regularised plain
+  /// solve can leave most of the error when M has eigenvalues below δ).
   int refine_max_iter = 10;
   double refine_tol_rel = 1e-13;
   Ordering ordering = Ordering::Amd;
