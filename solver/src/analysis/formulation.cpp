@@ -258,11 +258,60 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
     }
   }
 
-  // Variable indices: the multiplier, then every orthant variable, then the cones (the conic
-  // layer's order). Radius rows follow the equilibrium rows.
-  int num_orthant = 1;
+  // A live load on every block (seismic) would make the multiplier's column dense, and with it
+  // A W^2 A^T; keeping it out of the factor by a bordered solve loses accuracy near the optimum.
+  // Instead each free block gets its own copy alpha_b of the multiplier, in its own rows only,
+  // and equalities alpha_parent = alpha_child along a spanning tree of the contact graph tie the
+  // copies together: each such row couples two blocks that already touch, so the normal matrix
+  // keeps the block pattern of the structure. Variable 0 is the copy the objective sees.
+  std::vector<int> alpha_variable(m.blocks.size(), f.multiplier_variable);
+  std::vector<std::pair<int, int>> ties;  // (copy, copy) pairs of variables forced equal
+  int num_alpha = 1;
+  if (!f.settlement) {
+    int loaded_blocks = 0;
+    for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+      if (m.blocks[b].is_support()) continue;
+      const bool seismic = m.analysis.seismic_direction && m.blocks[b].weight() > 0.0;
+      bool point_load = false;
+      for (const auto& load : m.live_loads) point_load |= load.block == static_cast<int>(b);
+      loaded_blocks += (seismic || point_load) ? 1 : 0;
+    }
+    if (loaded_blocks > 1) {
+      std::vector<std::vector<int>> neighbours(m.blocks.size());
+      for (const auto& contact : m.interfaces) {
+        if (m.blocks[contact.block_a].is_support() || m.blocks[contact.block_b].is_support()) continue;
+        neighbours[contact.block_a].push_back(contact.block_b);
+        neighbours[contact.block_b].push_back(contact.block_a);
+      }
+      std::vector<bool> seen(m.blocks.size(), false);
+      int root_variable = -1;
+      for (std::size_t start = 0; start < m.blocks.size(); ++start) {
+        if (m.blocks[start].is_support() || seen[start]) continue;
+        // Breadth-first over one connected group of free blocks; groups are tied to the first.
+        std::vector<int> queue{static_cast<int>(start)};
+        seen[start] = true;
+        alpha_variable[start] = root_variable < 0 ? f.multiplier_variable : num_alpha++;
+        if (root_variable < 0) root_variable = f.multiplier_variable;
+        else ties.emplace_back(root_variable, alpha_variable[start]);
+        for (std::size_t head = 0; head < queue.size(); ++head) {
+          const int block = queue[head];
+          for (int next : neighbours[block]) {
+            if (seen[next]) continue;
+            seen[next] = true;
+            alpha_variable[next] = num_alpha++;
+            ties.emplace_back(alpha_variable[block], alpha_variable[next]);
+            queue.push_back(next);
+          }
+        }
+      }
+    }
+  }
+
+  // Variable indices: the multiplier copies, then every orthant variable, then the cones (the
+  // conic layer's order). Radius rows follow the equilibrium rows, tie rows come last.
+  int num_orthant = num_alpha;
   for (const PointSpec& spec : specs) num_orthant += static_cast<int>(spec.orthant.size());
-  int next_orthant = 1;
+  int next_orthant = num_alpha;
   int next_cone = num_orthant;
   f.first_radius_row = num_equilibrium_rows;
   std::vector<Eigen::Index> soc_dims;
@@ -346,9 +395,24 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
     // The ground holds the moving supports with a reaction -R d (Portioli & Cascini 2016).
     if (settlement_row >= 0) live[settlement_row] = -1.0;
   }
-  for (int row = 0; row < num_rows; ++row) {
-    if (live[row] != 0.0) triplets.emplace_back(row, f.multiplier_variable, live[row]);
+  std::vector<int> row_owner(num_rows, -1);  // the block whose equilibrium a row states
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    if (f.block_row[b] < 0 || m.blocks[b].is_support()) continue;
+    for (int k = 0; k < f.rows_per_block; ++k) row_owner[f.block_row[b] + k] = static_cast<int>(b);
   }
+  for (int row = 0; row < num_rows; ++row) {
+    if (live[row] == 0.0) continue;
+    const int variable = row_owner[row] >= 0 ? alpha_variable[row_owner[row]] : f.multiplier_variable;
+    triplets.emplace_back(row, variable, live[row]);
+  }
+  for (const auto& [first, second] : ties) {
+    triplets.emplace_back(num_rows, first, 1.0);
+    triplets.emplace_back(num_rows, second, -1.0);
+    ++num_rows;
+  }
+  rhs.conservativeResize(num_rows);
+  rhs.tail(ties.size()).setZero();
+  f.num_tie_rows = static_cast<int>(ties.size());
 
   const int num_variables = next_cone;
   f.problem.A.resize(num_rows, num_variables);

@@ -71,7 +71,7 @@ struct Formulation {
   FormulationOptions options;
   double length_scale = 1.0;  ///< m: moment rows are divided by it
   double force_scale = 1.0;   ///< kN: force variables and rows are in units of it
-  int multiplier_variable = 0;  ///< alpha, or R / force_scale under settlement
+  int multiplier_variable = 0;  ///< alpha (the copy the objective sees), or R / force_scale under settlement
   int rows_per_block = 6;
   /// First equilibrium row of each block; -1 for fixed supports. Under settlement all moving
   /// supports share one row (their summed load along the settlement direction).
@@ -81,6 +81,8 @@ struct Formulation {
   Vec3 settlement_direction = Vec3::Zero();
   int num_radius_rows = 0;
   int first_radius_row = 0;
+  /// Rows alpha_a = alpha_b tying the per-block copies of the load multiplier (last rows).
+  int num_tie_rows = 0;
 
   /// Forces at every formulation point (kN, global frame) from a primal solution x.
   std::vector<Vec3> point_forces(const Eigen::VectorXd& x) const;

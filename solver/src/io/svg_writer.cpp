@@ -22,7 +22,7 @@ using model::Vec3;
 // read the mechanism, small enough that blocks stay recognisable next to their outlines.
 constexpr double kAutoAmplitudeFraction = 0.08;
 constexpr double kMargin = 20.0;
-constexpr double kLegendItemWidth = 140.0;
+constexpr double kLegendItemWidth = 150.0;
 constexpr int kLegendItems = 7;
 
 constexpr const char* kOpeningColour = "#d62728";
@@ -790,11 +790,16 @@ void append_interior_point_panel(std::string& out, const AnalysisResult& result,
 std::string convergence_svg(const AnalysisResult& result) {
   constexpr double kWidth = 1000.0, kHeight = 420.0;
   const std::string title = std::string("Convergence — ") + verdict_words(result.verdict);
+  // The history may be all a caller filled in; row 0 is the starting point, not an iteration.
+  const int interior_point_iterations = result.interior_point_history.empty()
+                                            ? result.solver_info.iterations
+                                            : std::max(result.solver_info.iterations,
+                                                       result.interior_point_history.back().iteration);
   std::string out;
   append_svg_open(out, kWidth, kHeight, title);
   append_text(out, kMargin, 30, title, "font-size=\"18\" font-weight=\"bold\"");
   std::string subtitle = std::string("friction ") + friction_words(result.friction_model) + " · cone " +
-                         cone_words(result) + " · " + std::to_string(result.solver_info.iterations) +
+                         cone_words(result) + " · " + std::to_string(interior_point_iterations) +
                          " interior-point iterations in the last solve";
   append_text(out, kMargin, 50, subtitle, "font-size=\"12\" fill=\"#444444\"");
   const PlotArea left{95, 90, 480, kHeight - 60}, right{595, 90, 980, kHeight - 60};
