@@ -325,11 +325,17 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
       std::vector<double> radii(normals.size());
       for (std::size_t p = 0; p < radii.size(); ++p) radii[p] = std::max(floor, cylinder.points[p].friction * normals[p]);
 
-      // Early steps to a looser gap; the converged step is re-solved at the requested one.
+      // Steps are solved only as accurately as the scheme can use: a tenth of the last relative
+      // change of alpha, within [a tenth of the convergence tolerance, 1e-3]. The converged step
+      // is then re-solved at the requested tolerances.
+      auto step_tolerance = [&](double last_relative_change) {
+        const double tol = std::clamp(0.1 * last_relative_change, 0.1 * request.non_associative_tolerance, 1e-3);
+        return std::max(tol, request.tol_relative_gap);
+      };
+      double step_tol = step_tolerance(1.0);
       conic::Settings settings = solver_settings(request, options, time_left());
-      const double loose = std::max(request.tol_relative_gap, 1e-6);
-      settings.tol_gap_rel = loose;
-      settings.tol_feas = std::max(request.tol_feasibility, 1e-7);
+      settings.tol_gap_rel = step_tol;
+      settings.tol_feas = std::max(request.tol_feasibility, 0.1 * step_tol);
       conic::ConicProblem first = cylinder.problem;
       first.b = cylinder.rhs_with_radii(radii);
       const auto cylinder_start = Clock::now();
@@ -348,6 +354,8 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
           break;
         }
         cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
+        cylinder_solver.settings().tol_gap_rel = step_tol;
+        cylinder_solver.settings().tol_feas = std::max(request.tol_feasibility, 0.1 * step_tol);
         const auto step_start = Clock::now();
         conic::Solution next = cylinder_solver.solve();
         result.solve_seconds += seconds_since(step_start);
@@ -377,6 +385,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
           result.non_associative_converged = true;
           break;
         }
+        step_tol = step_tolerance(std::abs(value - previous) / scale);
         // Adaptive damping: when alpha turns back (the iteration overshoots), halve the weight of
         // the new radii, down to half the requested damping (lower stalls the drift of alpha).
         if (previous_change * (value - previous) < 0.0) damping = std::max(damping * 0.5, request.non_associative_damping / 2.0);
@@ -387,7 +396,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
         }
         cylinder_solver.update_b(cylinder.rhs_with_radii(radii));
       }
-      if (have_step && result.non_associative_converged && loose > request.tol_relative_gap && time_left() > 0.0) {
+      if (have_step && result.non_associative_converged && step_tol > request.tol_relative_gap && time_left() > 0.0) {
         cylinder_solver.settings().tol_gap_rel = request.tol_relative_gap;
         cylinder_solver.settings().tol_feas = request.tol_feasibility;
         cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
