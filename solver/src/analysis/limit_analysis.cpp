@@ -333,6 +333,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
         return std::max(tol, request.tol_relative_gap);
       };
       double step_tol = step_tolerance(1.0);
+      double reported_step_tol = step_tol;  // tolerance of the step that will be reported
       conic::Settings settings = solver_settings(request, options, time_left());
       settings.tol_gap_rel = step_tol;
       settings.tol_feas = std::max(request.tol_feasibility, 0.1 * step_tol);
@@ -356,6 +357,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
         cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
         cylinder_solver.settings().tol_gap_rel = step_tol;
         cylinder_solver.settings().tol_feas = std::max(request.tol_feasibility, 0.1 * step_tol);
+        reported_step_tol = step_tol;
         const auto step_start = Clock::now();
         conic::Solution next = cylinder_solver.solve();
         result.solve_seconds += seconds_since(step_start);
@@ -396,7 +398,8 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
         }
         cylinder_solver.update_b(cylinder.rhs_with_radii(radii));
       }
-      if (have_step && result.non_associative_converged && step_tol > request.tol_relative_gap && time_left() > 0.0) {
+      // The reported step is always solved at the requested tolerances, converged or not.
+      if (have_step && reported_step_tol > request.tol_relative_gap && time_left() > 0.0) {
         cylinder_solver.settings().tol_gap_rel = request.tol_relative_gap;
         cylinder_solver.settings().tol_feas = request.tol_feasibility;
         cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
