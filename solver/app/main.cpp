@@ -255,6 +255,11 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     std::cerr << "rbla: out of memory\n";
     return kSolverFailure;
+  } catch (const std::exception& error) {
+    // Anything else (e.g. a problem dump that cannot be written) ends the run with its reason,
+    // never with an abort.
+    std::cerr << "rbla: " << error.what() << "\n";
+    return kSolverFailure;
   }
   return kUsage;
 }

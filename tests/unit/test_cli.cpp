@@ -158,3 +158,9 @@ TEST_F(Cli, DumpProblemWritesAnMpsForThePlanarLp) {
   EXPECT_NE(text.str().find("ROWS"), std::string::npos);
   EXPECT_NE(text.str().find("ENDATA"), std::string::npos);
 }
+
+TEST_F(Cli, UnwritableProblemDumpIsAMessageNotACrash) {
+  const auto r = run("solve -q " + write("m.json", box_model()) + " --dump-problem " + path("no_such_dir/p.cbf"));
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("rbla: "), std::string::npos) << r.output;
+}
