@@ -162,7 +162,7 @@ int run_solve(const CommonOptions& options) {
   } catch (const rbla::model::ModelError& error) {
     return report_invalid(error);
   } catch (const rbla::conic::ConicSetupError& error) {
-    std::cerr << "rbla: the conic problem could not be set up: " << error.what() << "\n";
+    std::cerr << "rbla: conic problem: " << error.what() << "\n";
     return kSolverFailure;
   }
   for (const auto& warning : result.warnings) {
