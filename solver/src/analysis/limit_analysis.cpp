@@ -200,6 +200,10 @@ void record_size(const Formulation& f, AnalysisResult& result) {
   result.size.num_nonzeros = f.problem.A.nonZeros();
 }
 
+std::string count(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
 void write_verdict_text(const model::Model& m, AnalysisResult& result) {
   const std::string force_unit = m.units.force_name;
   std::size_t falling = 0;
@@ -210,18 +214,18 @@ void write_verdict_text(const model::Model& m, AnalysisResult& result) {
       if (result.base_reaction) {
         result.verdict_text = "Collapse under settlement: base reaction at collapse R = " +
                               format(*result.base_reaction / m.units.force_to_kN) + " " + force_unit + "; " +
-                              std::to_string(cracked) + " interfaces crack.";
+                              count(cracked, "interface cracks", "interfaces crack") + ".";
       } else {
         result.verdict_text = "Collapse at load multiplier alpha = " + format(result.load_multiplier.value_or(0.0)) +
-                              "; " + std::to_string(falling) + " blocks move, " + std::to_string(cracked) +
-                              " interfaces crack.";
+                              "; " + count(falling, "block moves", "blocks move") + ", " +
+                              count(cracked, "interface cracks", "interfaces crack") + ".";
       }
       break;
     case Verdict::NoMechanism:
       result.verdict_text = "No mechanism: the live load can grow without bound (alpha unbounded).";
       break;
     case Verdict::CannotStand:
-      result.verdict_text = "Cannot stand under dead load alone: " + std::to_string(falling) + " blocks fall.";
+      result.verdict_text = "Cannot stand under dead load alone: " + count(falling, "block falls", "blocks fall") + ".";
       break;
     case Verdict::SolverFailure:
       result.verdict_text = "No answer: the conic solver failed (" +
