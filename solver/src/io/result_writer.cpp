@@ -37,13 +37,19 @@ json model_summary_json(const model::Model& model) {
               {"total_weight", total_weight / model.units.force_to_kN}};
 }
 
+namespace {
+
+json warning_json(const model::Warning& warning) {
+  json entry{{"code", warning.code}, {"message", warning.message}};
+  if (!warning.pointer.empty()) entry["pointer"] = warning.pointer;
+  return entry;
+}
+
+}  // namespace
+
 json warnings_json(const model::Model& model) {
   json list = json::array();
-  for (const auto& warning : model.warnings) {
-    json entry{{"code", warning.code}, {"message", warning.message}};
-    if (!warning.pointer.empty()) entry["pointer"] = warning.pointer;
-    list.push_back(std::move(entry));
-  }
+  for (const auto& warning : model.warnings) list.push_back(warning_json(warning));
   return list;
 }
 
@@ -233,11 +239,7 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
   }
 
   json warnings = warnings_json(model);
-  for (const auto& warning : result.warnings) {
-    json entry{{"code", warning.code}, {"message", warning.message}};
-    if (!warning.pointer.empty()) entry["pointer"] = warning.pointer;
-    warnings.push_back(std::move(entry));
-  }
+  for (const auto& warning : result.warnings) warnings.push_back(warning_json(warning));
   out["warnings"] = warnings;
   return out;
 }
