@@ -1,8 +1,10 @@
 // rbla_conic_cbf_solve: solves a CBF file (the subset rbla::conic::write_cbf writes) and prints
 // one JSON object with the outcome. Used by tests/crosscheck/crosscheck_cvxopt.py.
 //   rbla_conic_cbf_solve problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]
+//                        [--ordering best|amd|metis|default] [--correctors K]
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -13,7 +15,7 @@
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]\n",
+                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K]\n",
                  argv[0]);
     return 2;
   }
@@ -26,6 +28,14 @@ int main(int argc, char** argv) {
       settings.equilibrate = false;
     } else if (std::strcmp(argv[k], "--no-dense-columns") == 0) {
       settings.dense_columns = false;
+    } else if (std::strcmp(argv[k], "--correctors") == 0 && k + 1 < argc) {
+      settings.max_centrality_correctors = std::atoi(argv[++k]);
+    } else if (std::strcmp(argv[k], "--ordering") == 0 && k + 1 < argc) {
+      const char* name = argv[++k];
+      settings.ordering = std::strcmp(name, "metis") == 0     ? rbla::conic::Ordering::Metis
+                          : std::strcmp(name, "default") == 0 ? rbla::conic::Ordering::CholmodDefault
+                          : std::strcmp(name, "amd") == 0     ? rbla::conic::Ordering::Amd
+                                                              : rbla::conic::Ordering::Best;
     } else {
       std::fprintf(stderr, "unknown option %s\n", argv[k]);
       return 2;

@@ -6,6 +6,7 @@
 // and the linearised complementarity is  λ ∘ (W dz + W⁻¹ dx) = d,  "∘" the Jordan product.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -42,6 +43,10 @@ class Cone {
   virtual void lambda_divide(ConstVecRef d, VecRef out) const = 0;
   /// Largest α ≥ 0 with v + α dv ∈ K for interior v (+inf if unbounded).
   virtual double max_step(ConstVecRef v, ConstVecRef dv) const = 0;
+  /// Gondzio's centrality target for a trial complementarity product v: out = P(v) − v, where P
+  /// moves each eigenvalue of v (each entry for R_+; v₀ ± ‖v₁‖ along v's own spectral frame for
+  /// an SOC) into [lo, hi]; a decrease is capped at −hi (Gondzio 1996, §3).
+  virtual void centrality_correction(ConstVecRef v, double lo, double hi, VecRef out) const = 0;
   virtual void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const = 0;
   /// Writes the dense W² of each of this cone's blocks, column-major, consecutively.
   virtual double* pack_W2(double* out) const = 0;
@@ -50,6 +55,13 @@ class Cone {
   Eigen::Index offset_;
   Eigen::Index dim_;
 };
+
+/// Gondzio's projection of one eigenvalue into [lo, hi], as a change, never below −hi.
+inline double centrality_change(double eigenvalue, double lo, double hi) {
+  if (eigenvalue < lo) return lo - eigenvalue;
+  if (eigenvalue > hi) return std::max(hi - eigenvalue, -hi);
+  return 0.0;
+}
 
 /// R_+^n: W = diag(√(x/z)), λ = √(x z), Jordan product = elementwise product.
 class NonnegativeCone final : public Cone {
@@ -65,6 +77,7 @@ class NonnegativeCone final : public Cone {
   void jordan_product(ConstVecRef a, ConstVecRef b, VecRef out) const override;
   void lambda_divide(ConstVecRef d, VecRef out) const override;
   double max_step(ConstVecRef v, ConstVecRef dv) const override;
+  void centrality_correction(ConstVecRef v, double lo, double hi, VecRef out) const override;
   void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
   double* pack_W2(double* out) const override;
 
@@ -91,6 +104,7 @@ class SecondOrderCone final : public Cone {
   void jordan_product(ConstVecRef a, ConstVecRef b, VecRef out) const override;
   void lambda_divide(ConstVecRef d, VecRef out) const override;
   double max_step(ConstVecRef v, ConstVecRef dv) const override;
+  void centrality_correction(ConstVecRef v, double lo, double hi, VecRef out) const override;
   void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
   double* pack_W2(double* out) const override;
 
@@ -122,6 +136,7 @@ class ConeSet {
   void jordan_product(const Vec& a, const Vec& b, Vec& out) const;
   void lambda_divide(const Vec& d, Vec& out) const;
   double max_step(const Vec& v, const Vec& dv) const;
+  void centrality_correction(const Vec& v, double lo, double hi, Vec& out) const;
   std::vector<ScalingBlock> scaling_blocks() const;
   void pack_W2(std::vector<double>& out) const;  ///< out must be sized Σ block size²
 

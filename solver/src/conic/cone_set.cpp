@@ -67,6 +67,14 @@ double ConeSet::max_step(const Vec& v, const Vec& dv) const {
   return step;
 }
 
+void ConeSet::centrality_correction(const Vec& v, double lo, double hi, Vec& out) const {
+  out.resize(dim_);
+  for (const auto& k : cones_) {
+    k->centrality_correction(v.segment(k->offset(), k->dim()), lo, hi,
+                             out.segment(k->offset(), k->dim()));
+  }
+}
+
 std::vector<ScalingBlock> ConeSet::scaling_blocks() const {
   std::vector<ScalingBlock> blocks;
   for (const auto& k : cones_) k->append_scaling_blocks(blocks);

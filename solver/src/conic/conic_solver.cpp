@@ -184,16 +184,16 @@ struct ConicSolver::Impl {
 namespace {
 
 void print_banner(std::ostream& out, const ConicProblem& p, int dense, long nnz_M, long nnz_L,
-                  const std::string& backend) {
+                  double flops, const std::string& backend) {
   char line[512];
   std::snprintf(
       line, sizeof line,
       "rbla conic interior point (HSDE, NT scaling, Mehrotra predictor-corrector)\n"
       "  rows %lld, variables %lld, nnz(A) %lld, nonnegative %lld, second-order cones %zu\n"
-      "  dense columns %d, nnz(M) %ld, nnz(L) %ld, %s\n",
+      "  dense columns %d, nnz(M) %ld, nnz(L) %ld, factor %.2e flops, %s\n",
       static_cast<long long>(p.A.rows()), static_cast<long long>(p.A.cols()),
       static_cast<long long>(p.A.nonZeros()), static_cast<long long>(p.cones.num_nonneg),
-      p.cones.soc_dims.size(), dense, nnz_M, nnz_L, backend.c_str());
+      p.cones.soc_dims.size(), dense, nnz_M, nnz_L, flops, backend.c_str());
   out << line
       << "iter  primal obj       dual obj         gap_rel   res_pri   res_dual  mu        "
          "tau       kappa     step    sigma   ref\n";
@@ -228,7 +228,7 @@ Solution ConicSolver::Impl::solve() {
   info.num_factor_nonzeros = normal->cholesky().factor_nonzeros();
   if (log)
     print_banner(*log, problem, info.num_dense_columns, normal->num_matrix_nonzeros(),
-                 info.num_factor_nonzeros, info.backend);
+                 info.num_factor_nonzeros, normal->cholesky().factor_flops(), info.backend);
 
   const Eigen::Index n = A.cols();
   const Eigen::Index m = A.rows();
@@ -242,6 +242,7 @@ Solution ConicSolver::Impl::solve() {
   detail::NormalEquations* ne = normal.get();
   Vec rp, rd, lambda, W2c, Atq_c, dxq, q, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
   Vec dx_a, dy_a, dz_a, dx, dy, dz, scaled_dx, scaled_dz, lambda_sq, corr, ep, dp, ddx;
+  Vec trial_s, trial_z, trial_v, ds_c, cdx, cdy, cdz;
   double rg = 0;
   double last_step = 0, last_sigma = 0;
   int last_refine = 0;
@@ -456,7 +457,49 @@ Solution ConicSolver::Impl::solve() {
       ds = -lambda_sq - corr + (sigma * mu) * e;
       direction(1.0 - sigma, ds, -tau * kappa - dtau_a * dkappa_a + sigma * mu, dx, dy, dz, dtau,
                 dkappa);
-      alpha = std::min(1.0, s.step_fraction * max_step(dx, dz, dtau, dkappa));
+      alpha = s.step_fraction * std::min(1.0, max_step(dx, dz, dtau, dkappa));
+
+      // ---- Gondzio multiple centrality correctors (Gondzio 1996; Colombo & Gondzio 2008) ----
+      // Degenerate problems (most contact points end at the cone apex with a zero dual too)
+      // leave a few badly centred pairs that block every step. Each corrector asks for a longer
+      // step α̃, looks at the complementarity products the current direction would give there,
+      // moves the outliers back into [β_min σμ, β_max σμ] and re-solves with the same factor
+      // (one triangular solve: about 1/25 of a factorisation here). It is kept only if the step
+      // grows by 1 %. α̃ = α + 0.3 and three correctors were the best of the variants tried on
+      // the façade problems (1.5α + 0.3, 2α, α + 0.1 … 0.5; 1 to 5 correctors): 45 → 31
+      // iterations on the 1920-block seismic LP, 29 → 21 under settlement, 28 → 19 in 3-D.
+      double kappa_rhs = -tau * kappa - dtau_a * dkappa_a + sigma * mu;
+      for (int k = 0; k < s.max_centrality_correctors && alpha < s.step_fraction; ++k) {
+        const double alpha_trial = std::min(1.0, alpha + 0.3);
+        cones.mul_Winv(dx, scaled_dx);
+        cones.mul_W(dz, scaled_dz);
+        trial_s = lambda + alpha_trial * scaled_dx;
+        trial_z = lambda + alpha_trial * scaled_dz;
+        cones.jordan_product(trial_s, trial_z, trial_v);
+        const double lo = 0.1 * sigma * mu, hi = 10.0 * sigma * mu;
+        cones.centrality_correction(trial_v, lo, hi, corr);
+        const double kappa_change = detail::centrality_change(
+            (tau + alpha_trial * dtau) * (kappa + alpha_trial * dkappa), lo, hi);
+        ds_c = ds + corr;
+        double cdtau = 0, cdkappa = 0;
+        const bool refinement_failed_before = refinement_failed;
+        direction(1.0 - sigma, ds_c, kappa_rhs + kappa_change, cdx, cdy, cdz, cdtau, cdkappa);
+        ++info.num_centrality_correctors;
+        const double alpha_c = s.step_fraction * std::min(1.0, max_step(cdx, cdz, cdtau, cdkappa));
+        if (!(alpha_c >= 1.01 * alpha) || refinement_failed != refinement_failed_before) {
+          refinement_failed = refinement_failed_before;  // the rejected direction is not used
+          break;
+        }
+        ds.swap(ds_c);
+        kappa_rhs += kappa_change;
+        dx.swap(cdx);
+        dy.swap(cdy);
+        dz.swap(cdz);
+        dtau = cdtau;
+        dkappa = cdkappa;
+        alpha = alpha_c;
+        ++info.num_centrality_correctors_accepted;
+      }
       info.solve_seconds += seconds_since(solve_start);
       if (!refinement_failed || ne->num_dense_columns() == 0) break;
       // The bordered dense-column solve lost accuracy: move the dense columns into the sparse

@@ -40,6 +40,11 @@ double NonnegativeCone::max_step(ConstVecRef v, ConstVecRef dv) const {
   return step;
 }
 
+void NonnegativeCone::centrality_correction(ConstVecRef v, double lo, double hi,
+                                            VecRef out) const {
+  for (Eigen::Index i = 0; i < dim(); ++i) out[i] = centrality_change(v[i], lo, hi);
+}
+
 void NonnegativeCone::append_scaling_blocks(std::vector<ScalingBlock>& blocks) const {
   for (Eigen::Index i = 0; i < dim(); ++i) blocks.push_back({offset() + i, 1});
 }

@@ -110,6 +110,21 @@ double SecondOrderCone::max_step(ConstVecRef v, ConstVecRef dv) const {
   return excess > 0 ? 1.0 / excess : std::numeric_limits<double>::infinity();
 }
 
+void SecondOrderCone::centrality_correction(ConstVecRef v, double lo, double hi,
+                                            VecRef out) const {
+  // v = e₋ u₋ + e₊ u₊ with e± = v₀ ± ‖v₁‖, u± = ½ (1, ±v₁/‖v₁‖); each eigenvalue moves alone.
+  const Eigen::Index q = dim();
+  const double r = v.tail(q - 1).norm();
+  const double t_minus = centrality_change(v[0] - r, lo, hi);
+  const double t_plus = centrality_change(v[0] + r, lo, hi);
+  out[0] = 0.5 * (t_minus + t_plus);
+  if (r > 0) {
+    out.tail(q - 1) = (0.5 * (t_plus - t_minus) / r) * v.tail(q - 1);
+  } else {
+    out.tail(q - 1).setZero();
+  }
+}
+
 void SecondOrderCone::append_scaling_blocks(std::vector<ScalingBlock>& blocks) const {
   blocks.push_back({offset(), dim()});
 }

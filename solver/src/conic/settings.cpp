@@ -6,6 +6,8 @@ namespace rbla::conic {
 
 const char* to_string(Ordering ordering) {
   switch (ordering) {
+    case Ordering::Best:
+      return "best of AMD and METIS";
     case Ordering::Amd:
       return "AMD";
     case Ordering::Metis:
@@ -43,6 +45,8 @@ std::vector<std::string> Settings::validate() const {
   if (max_iter < 0) messages.push_back("max_iter must be >= 0");
   if (!(step_fraction > 0 && step_fraction < 1))
     messages.push_back("step_fraction must be in (0, 1)");
+  if (max_centrality_correctors < 0 || max_centrality_correctors > 20)
+    messages.push_back("max_centrality_correctors must be in [0, 20]");
   if (equilibrate_max_iter < 0) messages.push_back("equilibrate_max_iter must be >= 0");
   if (equilibrate_min_scaling > 1 || equilibrate_max_scaling < 1) {
     messages.push_back("equilibrate_min_scaling <= 1 <= equilibrate_max_scaling is required");

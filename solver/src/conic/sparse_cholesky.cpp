@@ -26,6 +26,12 @@ SparseCholesky::SparseCholesky(Ordering ordering) : impl_(std::make_unique<Impl>
   c.print = 0;  // "not positive definite" is an expected outcome here, handled by the caller
   c.supernodal = CHOLMOD_SUPERNODAL;
   switch (ordering) {
+    case Ordering::Best:
+      // cholmod_analyze tries both and keeps the one with the fewest nonzeros in L.
+      c.nmethods = 2;
+      c.method[0].ordering = CHOLMOD_AMD;
+      c.method[1].ordering = CHOLMOD_METIS;
+      break;
     case Ordering::Amd:
       c.nmethods = 1;
       c.method[0].ordering = CHOLMOD_AMD;
@@ -111,13 +117,19 @@ void SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
   out = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(impl_->solution->x), impl_->n);
 }
 
+double SparseCholesky::factor_flops() const { return impl_->common.fl; }
+
 long SparseCholesky::factor_nonzeros() const {
   const cholmod_common& c = impl_->common;
   return static_cast<long>(c.lnz);
 }
 
 std::string SparseCholesky::backend_name() const {
-  return std::string("CHOLMOD supernodal LL' (") + to_string(impl_->ordering) + ")";
+  std::string ordering = to_string(impl_->ordering);
+  if (impl_->ordering == Ordering::Best && impl_->factor)
+    ordering = impl_->factor->ordering == CHOLMOD_METIS ? "METIS, best of AMD and METIS"
+                                                        : "AMD, best of AMD and METIS";
+  return std::string("CHOLMOD supernodal LL' (") + ordering + ")";
 }
 
 }  // namespace rbla::conic::detail

@@ -29,6 +29,8 @@ class SparseCholesky {
   void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
 
   long factor_nonzeros() const;
+  /// Floating-point operations of one numeric factorisation (from the symbolic analysis).
+  double factor_flops() const;
   std::string backend_name() const;
   int num_analyses() const { return num_analyses_; }
 

@@ -10,7 +10,11 @@
 namespace rbla::conic {
 
 /// Fill-reducing ordering used by CHOLMOD for the normal matrix (symbolic analysis, once).
-enum class Ordering { Amd, Metis, CholmodDefault };
+/// Best: both AMD and METIS nested dissection, keeping the one with the smaller factor. On
+/// masonry walls (a planar mesh of blocks, 3 or 6 rows each) METIS wins as soon as extra rows tie
+/// neighbouring blocks (the per-block load-multiplier copies): 3.4e8 against 7.2e8 flops per
+/// factorisation on the 1920-block façade in 3-D, with AMD slightly ahead without them.
+enum class Ordering { Best, Amd, Metis, CholmodDefault };
 const char* to_string(Ordering ordering);
 
 struct Settings {
@@ -45,7 +49,10 @@ struct Settings {
       std::numeric_limits<double>::infinity();  ///< wall time, checked per iteration
 
   // ---- Step ----
-  double step_fraction = 0.99;  ///< fraction of the step to the cone boundary (0, 1)
+  double step_fraction = 0.99;
+  /// Gondzio centrality correctors per iteration, each one extra solve with the current factor
+  /// (kept only when it lengthens the step by 1 %); 0 gives plain Mehrotra.
+  int max_centrality_correctors = 3;  ///< fraction of the step to the cone boundary (0, 1)
   double step_min = 1e-8;       ///< a step shorter than this is a stall: the solve stops
   /// More than stall_max_iter consecutive steps shorter than stall_step also stop the solve
   /// (NumericalFailure, or SolvedInaccurate if the best iterate meets the reduced tolerances).
@@ -75,7 +82,7 @@ struct Settings {
   /// solve can leave most of the error when M has eigenvalues below δ).
   int refine_max_iter = 10;
   double refine_tol_rel = 1e-13;
-  Ordering ordering = Ordering::Amd;
+  Ordering ordering = Ordering::Best;
 
   // ---- Dense columns (read at construction) ----
   // A column j of the nonnegative block is dense when
