@@ -2,6 +2,7 @@
 // one JSON object with the outcome. Used by tests/crosscheck/crosscheck_cvxopt.py.
 //   rbla_conic_cbf_solve problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]
 //                        [--ordering best|amd|metis|default] [--correctors K]
+//                        [--blas-threads N]
 
 #include <cstdio>
 #include <cstdlib>
@@ -15,7 +16,7 @@
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K]\n",
+                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N]\n",
                  argv[0]);
     return 2;
   }
@@ -28,6 +29,8 @@ int main(int argc, char** argv) {
       settings.equilibrate = false;
     } else if (std::strcmp(argv[k], "--no-dense-columns") == 0) {
       settings.dense_columns = false;
+    } else if (std::strcmp(argv[k], "--blas-threads") == 0 && k + 1 < argc) {
+      settings.blas_threads = std::atoi(argv[++k]);
     } else if (std::strcmp(argv[k], "--correctors") == 0 && k + 1 < argc) {
       settings.max_centrality_correctors = std::atoi(argv[++k]);
     } else if (std::strcmp(argv[k], "--ordering") == 0 && k + 1 < argc) {

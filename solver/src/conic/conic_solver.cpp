@@ -26,6 +26,7 @@
 #include "cone.hpp"
 #include "equilibration.hpp"
 #include "normal_equations.hpp"
+#include "sparse_cholesky.hpp"
 #include "rbla/conic/solver.hpp"
 
 namespace rbla::conic {
@@ -218,6 +219,7 @@ Solution ConicSolver::Impl::solve() {
       throw ConicSetupError::from_messages("invalid solver settings", messages);
   }
   const Settings& s = settings;
+  const detail::BlasThreads blas_threads(s.blas_threads);
   std::ostream* log = s.verbose ? (s.log_stream ? s.log_stream : &std::cout) : nullptr;
 
   Info info;
@@ -608,12 +610,19 @@ Solution ConicSolver::Impl::solve() {
     std::snprintf(line, sizeof line,
                   "status: %s%s%s\niterations %d, primal %.12g, dual %.12g\n"
                   "time [s]: setup %.3f (symbolic %.3f), assembly %.3f, factor %.3f, solve %.3f, "
-                  "total %.3f; refactor retries %d\n",
+                  "total %.3f; refactor retries %d\n"
+                  "solves with the factor %ld, products with M %ld, centrality correctors %d "
+                  "(%d kept)\n",
                   to_string(status), info.failure_reason.empty() ? "" : " - ",
                   info.failure_reason.c_str(), info.iterations, info.primal_objective,
                   info.dual_objective, info.setup_seconds, info.symbolic_seconds,
                   info.assembly_seconds, info.factor_seconds, info.solve_seconds,
-                  info.total_seconds, info.num_refactor_retries);
+                  info.total_seconds, info.num_refactor_retries,
+                  normal->num_factor_solves() +
+                      (normal_without_dense ? normal_without_dense->num_factor_solves() : 0),
+                  normal->num_multiplies() +
+                      (normal_without_dense ? normal_without_dense->num_multiplies() : 0),
+                  info.num_centrality_correctors, info.num_centrality_correctors_accepted);
     *log << line;
   }
   solution.info = std::move(info);

@@ -199,6 +199,7 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
 }
 
 void NormalEquations::solve_regularised(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
+  ++num_factor_solves_;
   cholesky_.solve(rhs, out);
   if (!dense_blocks_.empty()) {
     const Eigen::VectorXd w = dense_schur_.solve(dense_D_.transpose() * out);
@@ -209,6 +210,7 @@ void NormalEquations::solve_regularised(const Eigen::VectorXd& rhs, Eigen::Vecto
 void NormalEquations::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
   // M v = Σ_k A_k (W²_k (A_kᵀ v)) with plain loops: blocks are tiny (q = 1 or 3 typically).
   // Called once per CG step: the work vectors are sized once, not per block.
+  ++num_multiplies_;
   out.setZero(m_);
   std::size_t max_q = 1;
   for (const BlockData& bd : blocks_) max_q = std::max(max_q, static_cast<std::size_t>(bd.size));

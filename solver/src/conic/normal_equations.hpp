@@ -55,6 +55,8 @@ class NormalEquations {
   /// out = M v with the exact M of the last factor() call (all blocks, no regularisation).
   void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
 
+  long num_factor_solves() const { return num_factor_solves_; }  ///< forward+backward pairs
+  long num_multiplies() const { return num_multiplies_; }          ///< products with M
   int num_dense_columns() const { return static_cast<int>(dense_blocks_.size()); }
   long num_matrix_nonzeros() const { return static_cast<long>(row_ind_.size()); }
   SparseCholesky& cholesky() { return cholesky_; }
@@ -85,6 +87,8 @@ class NormalEquations {
   std::vector<double> scratch_;
   SparseCholesky cholesky_;
   double shift_ = 0;
+  long num_factor_solves_ = 0;
+  mutable long num_multiplies_ = 0;
 
   // Dense-column Schur complement data, refreshed per factorisation.
   Eigen::MatrixXd dense_D_;       // m × k

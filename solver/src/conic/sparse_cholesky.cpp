@@ -1,12 +1,37 @@
 #include "sparse_cholesky.hpp"
 
 #include <cholmod.h>
+#include <dlfcn.h>
 
 #include <cstring>
 
 #include "rbla/conic/problem.hpp"
 
 namespace rbla::conic::detail {
+
+namespace {
+// Looked up at run time: libblas.so.3 is a Debian alternative (OpenBLAS, reference BLAS, BLIS...).
+using SetThreadsFn = void (*)(int);
+using GetThreadsFn = int (*)();
+SetThreadsFn openblas_set_threads() {
+  static const auto fn = reinterpret_cast<SetThreadsFn>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  return fn;
+}
+GetThreadsFn openblas_get_threads() {
+  static const auto fn = reinterpret_cast<GetThreadsFn>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  return fn;
+}
+}  // namespace
+
+BlasThreads::BlasThreads(int threads) {
+  if (threads <= 0 || !openblas_set_threads() || !openblas_get_threads()) return;
+  previous_ = openblas_get_threads()();
+  openblas_set_threads()(threads);
+}
+
+BlasThreads::~BlasThreads() {
+  if (previous_ > 0) openblas_set_threads()(previous_);
+}
 
 struct SparseCholesky::Impl {
   cholmod_common common{};

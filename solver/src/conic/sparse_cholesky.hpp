@@ -12,6 +12,23 @@
 
 namespace rbla::conic::detail {
 
+/// Sets OpenBLAS's thread count for its lifetime and restores it after (no effect when the BLAS
+/// in use is not OpenBLAS, or for threads ≤ 0). CHOLMOD's supernodal factor calls the BLAS on
+/// dense blocks of a few dozen rows and its solves call dtrsv/dgemv: with a second thread these
+/// spend much of their time in thread hand-over (sched_yield, futex), most of all on a shared
+/// machine (measured on the 3-D façade settlement problem with the machine loaded: 5.96 s of CPU
+/// time with 2 threads, 2.71 s with 1, and less wall time too).
+class BlasThreads {
+ public:
+  explicit BlasThreads(int threads);
+  ~BlasThreads();
+  BlasThreads(const BlasThreads&) = delete;
+  BlasThreads& operator=(const BlasThreads&) = delete;
+
+ private:
+  int previous_ = 0;
+};
+
 class SparseCholesky {
  public:
   explicit SparseCholesky(Ordering ordering);

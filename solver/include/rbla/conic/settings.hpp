@@ -83,6 +83,9 @@ struct Settings {
   int refine_max_iter = 10;
   double refine_tol_rel = 1e-13;
   Ordering ordering = Ordering::Best;
+  /// OpenBLAS threads during a solve (restored after); 0 keeps the library's own setting.
+  /// One is fastest here: see detail::BlasThreads.
+  int blas_threads = 1;
 
   // ---- Dense columns (read at construction) ----
   // A column j of the nonnegative block is dense when
