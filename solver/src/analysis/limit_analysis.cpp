@@ -401,6 +401,8 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
           radii[p] = std::max(floor, d * cylinder.points[p].friction * normals[p] + (1.0 - d) * radii[p]);
         }
         cylinder_solver.update_b(cylinder.rhs_with_radii(radii));
+        // Consecutive steps differ only in the radii: start the next one near this solution.
+        if (request.non_associative_warm_start) cylinder_solver.set_warm_start(step.x, step.y, step.z);
       }
       // The reported step is always solved at the requested tolerances, converged or not.
       if (have_step && reported_step_tol > request.tol_relative_gap && time_left() > 0.0) {
@@ -408,6 +410,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
         cylinder_solver.settings().tol_feas = request.tol_feasibility;
         cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
         cylinder_solver.update_b(cylinder.rhs_with_radii(used_radii));
+        if (request.non_associative_warm_start) cylinder_solver.set_warm_start(step.x, step.y, step.z);
         const auto final_start = Clock::now();
         conic::Solution tight = cylinder_solver.solve();
         result.solve_seconds += seconds_since(final_start);

@@ -40,6 +40,19 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// MemAvailable from /proc/meminfo in bytes, 0 when it cannot be read (not Linux).
+double available_memory_bytes() {
+  std::FILE* file = std::fopen("/proc/meminfo", "r");
+  if (!file) return 0.0;
+  char line[256];
+  double kib = 0.0;
+  while (std::fgets(line, sizeof line, file)) {
+    if (std::sscanf(line, "MemAvailable: %lf kB", &kib) == 1) break;
+  }
+  std::fclose(file);
+  return kib * 1024.0;
+}
+
 double inf_norm(const Vec& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
 
 /// Quality of the current iterate, measured on the original (unscaled) problem.
@@ -82,6 +95,8 @@ struct ConicSolver::Impl {
   std::vector<double> packed_W2;
   double setup_seconds = 0;
   double symbolic_seconds = 0;
+  bool has_warm_start = false;
+  Vec warm_x, warm_y, warm_z;  // original units, consumed by the next solve()
 
   Impl(ConicProblem p, Settings s) : problem(std::move(p)), settings(std::move(s)) {
     const auto start = Clock::now();
@@ -100,7 +115,27 @@ struct ConicSolver::Impl {
     const auto symbolic_start = Clock::now();
     normal = std::make_unique<detail::NormalEquations>(A, blocks, is_dense, settings.ordering);
     symbolic_seconds = seconds_since(symbolic_start);
+    check_memory();
     setup_seconds = seconds_since(start);
+  }
+
+  // Refuses a factor larger than the memory limit (Settings::memory_limit_bytes) before the
+  // numeric factorisation allocates it.
+  void check_memory() const {
+    double limit = settings.memory_limit_bytes;
+    if (limit == 0) limit = 0.8 * available_memory_bytes();
+    const double need = normal->cholesky().factor_bytes();
+    if (limit > 0 && need > limit) {
+      char text[400];
+      std::snprintf(text, sizeof text,
+                    "the Cholesky factor of the normal matrix (%lld rows, %ld nonzeros in L) "
+                    "needs %.2f GB, more than the %.2f GB this solve may use; use a coarser "
+                    "model, the planar formulation or a pyramid cone, or a machine with more "
+                    "memory",
+                    static_cast<long long>(A.rows()), normal->cholesky().factor_nonzeros(),
+                    need / 1e9, limit / 1e9);
+      throw ConicResourceError(text);
+    }
   }
 
   // Dense columns: see Settings::dense_column_*. Only nonnegative variables qualify, because an
@@ -180,21 +215,38 @@ struct ConicSolver::Impl {
   }
 
   Solution solve();
+
+  // The warm-start blend (see ConicSolver::set_warm_start) in the scaled variables, with τ = 1:
+  // x = col_scale ∘ x̂ / b_scale etc. inverted (see evaluate()). False if not usable.
+  bool warm_start(const Vec& e, Vec& x, Vec& y, Vec& z, double& kappa) {
+    const auto& eq = equilibration;
+    if (warm_x.size() != x.size() || warm_y.size() != y.size() || warm_z.size() != z.size() ||
+        !warm_x.allFinite() || !warm_y.allFinite() || !warm_z.allFinite())
+      return false;
+    const double lambda = settings.warm_start_weight;
+    x = lambda * (eq.b_scale * warm_x.cwiseQuotient(eq.col_scale)) + (1.0 - lambda) * e;
+    z = lambda * (eq.c_scale * warm_z.cwiseProduct(eq.col_scale)) + (1.0 - lambda) * e;
+    y = lambda * (eq.c_scale * warm_y.cwiseQuotient(eq.row_scale));
+    const double nu = static_cast<double>(cones.degree());
+    kappa = x.dot(z) / nu;
+    // Interior check through the scaling itself (it fails outside the cones).
+    return std::isfinite(kappa) && kappa > 0 && cones.update_scaling(x, z);
+  }
 };
 
 namespace {
 
 void print_banner(std::ostream& out, const ConicProblem& p, int dense, long nnz_M, long nnz_L,
-                  double flops, const std::string& backend) {
+                  double flops, double bytes, const std::string& backend) {
   char line[512];
   std::snprintf(
       line, sizeof line,
       "rbla conic interior point (HSDE, NT scaling, Mehrotra predictor-corrector)\n"
       "  rows %lld, variables %lld, nnz(A) %lld, nonnegative %lld, second-order cones %zu\n"
-      "  dense columns %d, nnz(M) %ld, nnz(L) %ld, factor %.2e flops, %s\n",
+      "  dense columns %d, nnz(M) %ld, nnz(L) %ld, factor %.2e flops %.0f MB, %s\n",
       static_cast<long long>(p.A.rows()), static_cast<long long>(p.A.cols()),
       static_cast<long long>(p.A.nonZeros()), static_cast<long long>(p.cones.num_nonneg),
-      p.cones.soc_dims.size(), dense, nnz_M, nnz_L, flops, backend.c_str());
+      p.cones.soc_dims.size(), dense, nnz_M, nnz_L, flops, bytes / 1e6, backend.c_str());
   out << line
       << "iter  primal obj       dual obj         gap_rel   res_pri   res_dual  mu        "
          "tau       kappa     step    sigma   ref\n";
@@ -228,9 +280,11 @@ Solution ConicSolver::Impl::solve() {
   info.symbolic_seconds = symbolic_seconds;
   info.num_dense_columns = normal->num_dense_columns();
   info.num_factor_nonzeros = normal->cholesky().factor_nonzeros();
+  info.factor_bytes = normal->cholesky().factor_bytes();
   if (log)
     print_banner(*log, problem, info.num_dense_columns, normal->num_matrix_nonzeros(),
-                 info.num_factor_nonzeros, normal->cholesky().factor_flops(), info.backend);
+                 info.num_factor_nonzeros, normal->cholesky().factor_flops(), info.factor_bytes,
+                 info.backend);
 
   const Eigen::Index n = A.cols();
   const Eigen::Index m = A.rows();
@@ -240,6 +294,16 @@ Solution ConicSolver::Impl::solve() {
   x = e;
   z = e;
   double tau = 1.0, kappa = 1.0;
+  if (has_warm_start) {
+    has_warm_start = false;
+    info.warm_started = warm_start(e, x, y, z, kappa);
+    if (!info.warm_started) {
+      x = e;
+      z = e;
+      y.setZero();
+      kappa = 1.0;
+    }
+  }
 
   detail::NormalEquations* ne = normal.get();
   Vec rp, rd, lambda, W2c, Atq_c, dxq, q, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
@@ -659,6 +723,14 @@ void ConicSolver::update_A_values(const Eigen::VectorXd& values) {
   if (!values.allFinite()) throw ConicSetupError("update_A_values: values are not finite");
   std::copy(values.data(), values.data() + values.size(), A.valuePtr());
   impl_->rescale();
+}
+
+void ConicSolver::set_warm_start(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                                 const Eigen::VectorXd& z) {
+  impl_->warm_x = x;
+  impl_->warm_y = y;
+  impl_->warm_z = z;
+  impl_->has_warm_start = true;
 }
 
 void ConicSolver::set_progress_callback(ProgressCallback callback) {

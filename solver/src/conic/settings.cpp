@@ -45,6 +45,10 @@ std::vector<std::string> Settings::validate() const {
   if (max_iter < 0) messages.push_back("max_iter must be >= 0");
   if (!(step_fraction > 0 && step_fraction < 1))
     messages.push_back("step_fraction must be in (0, 1)");
+  if (!(warm_start_weight > 0 && warm_start_weight < 1))
+    messages.push_back("warm_start_weight must be in (0, 1)");
+  if (!(memory_limit_bytes >= 0) || !std::isfinite(memory_limit_bytes))
+    messages.push_back("memory_limit_bytes must be finite and >= 0");
   if (blas_threads < 0 || blas_threads > 256) messages.push_back("blas_threads must be in [0, 256]");
   if (max_centrality_correctors < 0 || max_centrality_correctors > 20)
     messages.push_back("max_centrality_correctors must be in [0, 20]");

@@ -142,6 +142,16 @@ void SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
   out = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(impl_->solution->x), impl_->n);
 }
 
+double SparseCholesky::factor_bytes() const {
+  const cholmod_factor* L = impl_->factor;
+  if (!L) return 0.0;
+  // Supernodal: xsize values and ssize row indices; simplicial: about lnz of each.
+  const double values = L->is_super ? static_cast<double>(L->xsize) : impl_->common.lnz;
+  const double indices = L->is_super ? static_cast<double>(L->ssize) : impl_->common.lnz;
+  return values * sizeof(double) + indices * sizeof(int) +
+         static_cast<double>(L->n) * (2 * sizeof(double) + 4 * sizeof(int));
+}
+
 double SparseCholesky::factor_flops() const { return impl_->common.fl; }
 
 long SparseCholesky::factor_nonzeros() const {

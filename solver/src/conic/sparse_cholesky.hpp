@@ -46,6 +46,8 @@ class SparseCholesky {
   void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
 
   long factor_nonzeros() const;
+  /// Bytes of the numeric factor (values and supernode indices), known after analyze().
+  double factor_bytes() const;
   /// Floating-point operations of one numeric factorisation (from the symbolic analysis).
   double factor_flops() const;
   std::string backend_name() const;

@@ -6,9 +6,11 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <iterator>
 #include <sstream>
+#include <unordered_set>
 
 namespace rbla::io {
 
@@ -142,6 +144,7 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
     a.non_associative_max_iterations = na.value("max_iterations", a.non_associative_max_iterations);
     a.non_associative_tolerance = na.value("tolerance", a.non_associative_tolerance);
     a.non_associative_damping = na.value("damping", a.non_associative_damping);
+    a.non_associative_warm_start = na.value("warm_start", a.non_associative_warm_start);
   }
   a.time_limit_seconds = s.value("time_limit", 0.0);
 
@@ -162,6 +165,54 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
   }
 }
 
+/// Parser callback that finds the first repeated name in a JSON object. nlohmann keeps the last
+/// value of a repeated name silently, so `"unit_weight": 18, ..., "unit_weight": 1.8e7` would
+/// pick one without a word; a model must not be ambiguous. Tracks the JSON pointer on the way.
+class DuplicateKeyCheck {
+ public:
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: frames_.push_back({false, 0, {}, {}}); break;
+      case json::parse_event_t::array_start: frames_.push_back({true, 0, {}, {}}); break;
+      case json::parse_event_t::key:
+        if (!frames_.empty() && parsed.is_string()) {
+          Frame& top = frames_.back();
+          top.key = parsed.get<std::string>();
+          if (!top.keys.insert(top.key).second && pointer_.empty()) {
+            key_ = top.key;
+            for (const Frame& f : frames_) {
+              pointer_ += "/" + (f.array ? std::to_string(f.index) : model::pointer_token(f.key));
+            }
+          }
+        }
+        break;
+      case json::parse_event_t::value: next_element(); break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        if (!frames_.empty()) frames_.pop_back();
+        next_element();
+        break;
+    }
+    return true;
+  }
+  /// "" when no name repeats; else the JSON pointer of the second occurrence.
+  const std::string& pointer() const { return pointer_; }
+  const std::string& key() const { return key_; }
+
+ private:
+  struct Frame {
+    bool array = false;
+    std::size_t index = 0;  // array: index of the element being read
+    std::string key;        // object: name of the member being read
+    std::unordered_set<std::string> keys;
+  };
+  void next_element() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  std::vector<Frame> frames_;
+  std::string pointer_, key_;
+};
+
 }  // namespace
 
 std::string read_text(const std::string& path) {
@@ -179,12 +230,22 @@ std::string read_text(const std::string& path) {
 
 model::Model parse_model(const std::string& text) {
   json doc;
+  DuplicateKeyCheck duplicates;
   try {
-    doc = json::parse(text);
+    doc = json::parse(text, std::ref(duplicates));
   } catch (const json::parse_error& e) {
     std::string what = e.what();
     const auto colon = what.find("parse error");
     throw ModelError("", "malformed JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
+  } catch (const json::out_of_range& e) {
+    // A number literal beyond double range (e.g. 1e999) is out_of_range.406, not a parse_error.
+    std::string what = e.what();
+    const auto bracket = what.find("] ");
+    throw ModelError("", "malformed JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
+  }
+  if (!duplicates.pointer().empty()) {
+    throw ModelError(duplicates.pointer(), "the name '" + duplicates.key() +
+                                               "' appears twice in the same object: which value is meant is ambiguous");
   }
   if (const auto issues = validate_against_schema(doc, SchemaKind::Model); !issues.empty()) {
     throw ModelError(issues);

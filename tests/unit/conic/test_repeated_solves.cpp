@@ -1,6 +1,10 @@
 // A ConicSolver reuses its symbolic factorisation across updates of b, c and A's values.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <string>
+
 #include "random_problem.hpp"
 #include "rbla/conic/solver.hpp"
 
@@ -65,4 +69,80 @@ TEST(ConicRepeatedSolves, SettingsCanChangeBetweenSolves) {
   EXPECT_EQ(solver.solve().info.status, SolveStatus::IterationLimit);
   solver.settings().max_iter = 100;
   EXPECT_EQ(solver.solve().info.status, SolveStatus::Solved);
+}
+
+TEST(ConicRepeatedSolves, WarmStartReachesTheSameOptimumInFewerIterations) {
+  // A nearby problem (b moved by 1 %) started from the previous solution: same optimum as a
+  // cold solve, to the tolerances, and no more iterations.
+  RandomProblemOptions o;
+  o.rows = 60;
+  o.num_nonneg = 40;
+  o.num_soc3 = 40;
+  o.seed = 21;
+  const ConicProblem p = random_feasible_problem(o);
+  ConicSolver solver(p);
+  const Solution first = solver.solve();
+  ASSERT_EQ(first.info.status, SolveStatus::Solved);
+  EXPECT_FALSE(first.info.warm_started);
+
+  Eigen::VectorXd b = p.b;
+  for (Eigen::Index i = 0; i < b.size(); ++i) b[i] *= 1.0 + 0.01 * ((i % 5) - 2.0) / 2.0;
+  solver.update_b(b);
+  const Solution cold = solver.solve();
+  ASSERT_EQ(cold.info.status, SolveStatus::Solved);
+  solver.set_warm_start(first.x, first.y, first.z);
+  const Solution warm = solver.solve();
+  ASSERT_EQ(warm.info.status, SolveStatus::Solved);
+  EXPECT_TRUE(warm.info.warm_started);
+  EXPECT_NEAR(warm.info.primal_objective, cold.info.primal_objective,
+              1e-6 * (1.0 + std::abs(cold.info.primal_objective)));
+  EXPECT_LE(warm.info.iterations, cold.info.iterations);
+  // Used once: the next solve starts cold again.
+  const Solution again = solver.solve();
+  EXPECT_FALSE(again.info.warm_started);
+  EXPECT_EQ(again.info.iterations, cold.info.iterations);
+}
+
+TEST(ConicRepeatedSolves, UnusableWarmStartFallsBackToTheColdStart) {
+  RandomProblemOptions o;
+  o.rows = 30;
+  o.num_nonneg = 20;
+  o.num_soc3 = 20;
+  o.seed = 5;
+  const ConicProblem p = random_feasible_problem(o);
+  ConicSolver solver(p);
+  const Solution cold = solver.solve();
+  Eigen::VectorXd x = cold.x;
+  x[0] = std::numeric_limits<double>::quiet_NaN();
+  solver.set_warm_start(x, cold.y, cold.z);
+  const Solution s = solver.solve();
+  EXPECT_FALSE(s.info.warm_started);
+  EXPECT_EQ(s.info.status, SolveStatus::Solved);
+  EXPECT_EQ(s.info.iterations, cold.info.iterations);
+  solver.set_warm_start(Eigen::VectorXd::Ones(3), cold.y, cold.z);  // wrong length
+  EXPECT_FALSE(solver.solve().info.warm_started);
+}
+
+TEST(ConicRepeatedSolves, FactorLargerThanTheMemoryLimitIsRefusedBeforeFactoring) {
+  RandomProblemOptions o;
+  o.rows = 60;
+  o.num_nonneg = 40;
+  o.num_soc3 = 40;
+  o.seed = 3;
+  const ConicProblem p = random_feasible_problem(o);
+  Settings s;
+  s.memory_limit_bytes = 1000.0;  // far below any factor of 60 rows
+  try {
+    ConicSolver solver(p, s);
+    FAIL() << "expected ConicResourceError";
+  } catch (const ConicResourceError& error) {
+    EXPECT_NE(std::string(error.what()).find("needs"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("GB"), std::string::npos) << error.what();
+  }
+  s.memory_limit_bytes = 1e9;
+  ConicSolver solver(p, s);
+  const Solution ok = solver.solve();
+  EXPECT_EQ(ok.info.status, SolveStatus::Solved);
+  EXPECT_GT(ok.info.factor_bytes, 0.0);
+  EXPECT_LT(ok.info.factor_bytes, 1e9);
 }

@@ -63,6 +63,8 @@ struct Info {
   std::string failure_reason;    ///< why a NumericalFailure happened (kept when the
                                  ///< reduced-accuracy fallback made it SolvedInaccurate)
   int num_refactor_retries = 0;  ///< factorisations repeated with larger regularisation
+  double factor_bytes = 0;      ///< memory of the Cholesky factor (from the symbolic analysis)
+  bool warm_started = false;                   ///< started from set_warm_start's point
   int num_centrality_correctors = 0;           ///< Gondzio correctors tried (extra solves)
   int num_centrality_correctors_accepted = 0;  ///< of which kept
   int num_dense_columns = 0;     ///< columns handled outside the sparse factor

@@ -47,4 +47,11 @@ class ConicSetupError : public std::runtime_error {
                                        const std::vector<std::string>& messages);
 };
 
+/// The problem is too large for the memory this process may use (see Settings::memory_limit_bytes):
+/// thrown after the symbolic analysis, before the numeric factorisation would allocate.
+class ConicResourceError : public ConicSetupError {
+ public:
+  using ConicSetupError::ConicSetupError;
+};
+
 }  // namespace rbla::conic

@@ -52,7 +52,10 @@ struct Settings {
   double step_fraction = 0.99;
   /// Gondzio centrality correctors per iteration, each one extra solve with the current factor
   /// (kept only when it lengthens the step by 1 %); 0 gives plain Mehrotra.
-  int max_centrality_correctors = 3;  ///< fraction of the step to the cone boundary (0, 1)
+  int max_centrality_correctors = 3;
+  /// λ of ConicSolver::set_warm_start: the weight of the given point against the central start
+  /// e, in (0, 1).
+  double warm_start_weight = 0.9;  ///< fraction of the step to the cone boundary (0, 1)
   double step_min = 1e-8;       ///< a step shorter than this is a stall: the solve stops
   /// More than stall_max_iter consecutive steps shorter than stall_step also stop the solve
   /// (NumericalFailure, or SolvedInaccurate if the best iterate meets the reduced tolerances).
@@ -83,6 +86,11 @@ struct Settings {
   int refine_max_iter = 10;
   double refine_tol_rel = 1e-13;
   Ordering ordering = Ordering::Best;
+  /// Memory the Cholesky factor may take, bytes (read at construction). The factor's size is
+  /// known exactly after the symbolic analysis; a larger one raises ConicResourceError instead
+  /// of letting the system kill the process mid-solve. 0: 80 % of MemAvailable
+  /// (/proc/meminfo), no limit where that cannot be read.
+  double memory_limit_bytes = 0.0;
   /// OpenBLAS threads during a solve (restored after); 0 keeps the library's own setting.
   /// One is fastest here: see detail::BlasThreads.
   int blas_threads = 1;

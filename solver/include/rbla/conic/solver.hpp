@@ -7,7 +7,7 @@
 // dense-column solve loses accuracy late in a solve, the dense columns are moved into the sparse
 // factor for the rest of that solve (one extra symbolic analysis, kept for later solves).
 // Not supported: free variables (model them as differences of nonnegatives, or bound them),
-// semidefinite / exponential cones, warm starts.
+// semidefinite / exponential cones. Warm start: see ConicSolver::set_warm_start.
 
 #include <functional>
 #include <memory>
@@ -40,6 +40,16 @@ class ConicSolver {
   void update_c(const Eigen::VectorXd& c);
   /// values in the order of problem().A.valuePtr() (compressed column order), length nnz(A).
   void update_A_values(const Eigen::VectorXd& values);
+
+  /// Starts the next solve() near a known solution of a nearby problem (same dimensions), e.g.
+  /// the previous step of a sequence of update_b() solves: Skajaa, Andersen & Ye (2013),
+  /// "Warmstarting the homogeneous and self-dual interior point method for linear and conic
+  /// quadratic problems", Math. Prog. Comp. 5: x₀ = λ x̂ + (1 − λ) e, z₀ = λ ẑ + (1 − λ) e,
+  /// y₀ = λ ŷ, τ₀ = 1, κ₀ = μ(x₀, z₀), with x̂, ŷ, ẑ the given point in the solver's scaled
+  /// variables and λ = Settings::warm_start_weight. Used once: later solves start cold unless
+  /// this is called again. Ignored (cold start) when the point is not finite or the blend is not
+  /// interior. x, z in the cone K; y the equality multipliers (Solution's x, y, z).
+  void set_warm_start(const Eigen::VectorXd& x, const Eigen::VectorXd& y, const Eigen::VectorXd& z);
 
   void set_progress_callback(ProgressCallback callback);
   /// Tolerances, limits and output may be changed between solves. Structural fields
