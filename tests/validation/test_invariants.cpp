@@ -290,6 +290,14 @@ TEST(Invariants, PyramidsBracketTheCone) {
     in["analysis"]["pyramid_faces"] = out["analysis"]["pyramid_faces"] = m;
     const double a_in = alpha_of(run(in)), a_out = alpha_of(run(out));
     std::cout << "[ pyramid  ] m = " << m << ": " << a_in << " <= " << exact << " <= " << a_out << "\n";
+    // analysis.pyramid_bracket reports both from one run, whichever pyramid was asked for.
+    for (json asked : {in, out}) {
+      asked["analysis"]["pyramid_bracket"] = true;
+      const AnalysisResult r = run(asked);
+      ASSERT_TRUE(r.accuracy.pyramid_bracket.has_value());
+      EXPECT_LT(relative_error(r.accuracy.pyramid_bracket->first, a_in), 1e-7);
+      EXPECT_LT(relative_error(r.accuracy.pyramid_bracket->second, a_out), 1e-7);
+    }
     EXPECT_LE(a_in, exact * (1.0 + 1e-7));
     EXPECT_GE(a_out, exact * (1.0 - 1e-7));
     // The cone lies between the pyramid and its 1/cos(pi/m) enlargement, so alpha for a

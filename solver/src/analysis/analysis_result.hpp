@@ -6,6 +6,7 @@
 #include "rbla/conic/info.hpp"
 
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,9 @@ struct Accuracy {
   double primal_residual = 0.0;
   double dual_residual = 0.0;
   double equilibrium_residual = 0.0;  ///< kN: largest force imbalance of a block, from the forces reported
+  /// Associative pyramids only, when asked (analysis.pyramid_bracket): the value (alpha, or the
+  /// base reaction in kN) with the inscribed and with the circumscribed pyramid.
+  std::optional<std::pair<double, double>> pyramid_bracket;
 };
 
 /// One solve of the non-associative scheme (Gilbert et al. 2006; Portioli et al. 2014).

@@ -237,6 +237,44 @@ void write_verdict_text(const model::Model& m, AnalysisResult& result) {
   }
 }
 
+// analysis.pyramid_bracket: solves the other pyramid (same faces) and records both values. In a
+// planar scene both pyramids are the exact two-edge cone, so the value is the bracket.
+void bracket_pyramids(const model::Model& m, const model::AnalysisRequest& request,
+                      const FormulationOptions& options_used, double value, double time_left,
+                      const AnalysisOptions& options, AnalysisResult& result) {
+  if (request.cone == model::ConeKind::Exact || request.friction_model != model::FrictionModel::Associative) {
+    result.warnings.push_back({"pyramid_bracket_not_computed",
+                               "the pyramid bracket needs a pyramid cone and associative friction",
+                               "/analysis/pyramid_bracket"});
+    return;
+  }
+  const bool inscribed = request.cone == model::ConeKind::PyramidInscribed;
+  if (result.planar) {
+    result.accuracy.pyramid_bracket = std::make_pair(value, value);
+    return;
+  }
+  FormulationOptions other = options_used;
+  other.cone = inscribed ? model::ConeKind::PyramidCircumscribed : model::ConeKind::PyramidInscribed;
+  const auto start = Clock::now();
+  const Formulation formulation = build_formulation(m, other);
+  result.assemble_seconds += seconds_since(start);
+  const auto solve_start = Clock::now();
+  conic::ConicSolver solver(formulation.problem, solver_settings(request, options, time_left));
+  const conic::Solution solution = solver.solve();
+  result.solve_seconds += seconds_since(solve_start);
+  if (solution.info.status != conic::SolveStatus::Solved &&
+      solution.info.status != conic::SolveStatus::SolvedInaccurate) {
+    result.warnings.push_back({"pyramid_bracket_not_computed",
+                               std::string("the other pyramid's solve ended with ") +
+                                   conic::to_string(solution.info.status),
+                               "/analysis/pyramid_bracket"});
+    return;
+  }
+  const double other_value = multiplier_value(formulation, solution.x);
+  result.accuracy.pyramid_bracket =
+      inscribed ? std::make_pair(value, other_value) : std::make_pair(other_value, value);
+}
+
 }  // namespace
 
 AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
@@ -308,6 +346,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
   } else if (result.verdict == Verdict::Collapse) {
     read_solution(m, formulation, solution, true, {}, result);
     double value = multiplier_value(formulation, solution.x);
+    if (request.pyramid_bracket) bracket_pyramids(m, request, formulation_options, value, time_left(), options, result);
 
     if (request.friction_model == model::FrictionModel::NonAssociative) {
       // Gilbert et al. (2006), Portioli et al. (2014): replace each cone by a cylinder of radius

@@ -127,6 +127,7 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
                          ? model::FrictionModel::NonAssociative
                          : model::FrictionModel::Associative;
   const std::string cone = s.value("cone", "exact");
+  a.pyramid_bracket = s.value("pyramid_bracket", false);
   a.cone = cone == "pyramid_inscribed"       ? model::ConeKind::PyramidInscribed
            : cone == "pyramid_circumscribed" ? model::ConeKind::PyramidCircumscribed
                                              : model::ConeKind::Exact;

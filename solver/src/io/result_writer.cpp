@@ -8,6 +8,21 @@ namespace {
 
 json vec3_json(const model::Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 
+/// The result schema's `solver.status` names (conic::to_string gives the log's wording instead).
+const char* status_name(conic::SolveStatus status) {
+  switch (status) {
+    case conic::SolveStatus::Solved: return "solved";
+    case conic::SolveStatus::SolvedInaccurate: return "solved_inaccurate";
+    case conic::SolveStatus::PrimalInfeasible: return "primal_infeasible";
+    case conic::SolveStatus::DualInfeasible: return "dual_infeasible";
+    case conic::SolveStatus::IterationLimit: return "iteration_limit";
+    case conic::SolveStatus::TimeLimit: return "time_limit";
+    case conic::SolveStatus::NumericalFailure: return "numerical_failure";
+    case conic::SolveStatus::Cancelled: return "cancelled";
+  }
+  return "numerical_failure";
+}
+
 }  // namespace
 
 json model_summary_json(const model::Model& model) {
@@ -116,7 +131,7 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
   const conic::Info& info = result.solver_info;
   out["solver"] = {{"name", "rbla conic interior point (" + info.backend + ")"},
                    {"version", RBLA_VERSION},
-                   {"status", conic::to_string(info.status)},
+                   {"status", status_name(info.status)},
                    {"iterations", info.iterations},
                    {"primal_objective", info.primal_objective},
                    {"dual_objective", info.dual_objective},
@@ -141,7 +156,8 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
     json steps = json::array();
     const double value_unit = result.type == model::AnalysisType::Settlement ? f : 1.0;
     for (const auto& step : result.non_associative) {
-      steps.push_back({{"iteration", step.iteration},
+      // The analysis numbers the first (associative) solve 0; the schema counts solves from 1.
+      steps.push_back({{"iteration", step.iteration + 1},
                        {"load_multiplier", non_negative(step.value / value_unit)},
                        {"max_normal_force_change", step.max_normal_force_change / f},
                        {"interior_point_iterations", step.interior_point_iterations}});
@@ -236,6 +252,13 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
                        {"primal_residual", result.accuracy.primal_residual},
                        {"dual_residual", result.accuracy.dual_residual},
                        {"equilibrium_residual", result.accuracy.equilibrium_residual / f}};
+    if (result.accuracy.pyramid_bracket) {
+      // alpha is dimensionless; a base reaction is a force in model units.
+      const double unit = result.base_reaction ? f : 1.0;
+      out["accuracy"]["pyramid_bracket"] = {
+          {"inscribed", non_negative(result.accuracy.pyramid_bracket->first / unit)},
+          {"circumscribed", non_negative(result.accuracy.pyramid_bracket->second / unit)}};
+    }
   }
 
   json warnings = warnings_json(model);

@@ -103,6 +103,9 @@ struct AnalysisRequest {
   // unique, it changes which optimal forces a step returns (a cold start returns the analytic
   // centre of the optimal face); two validation cases then stopped converging at 1e-7.
   bool non_associative_warm_start = false;
+  // With a pyramid cone and associative friction: also solve the other pyramid (inscribed and
+  // circumscribed bracket the exact cone) and report both.
+  bool pyramid_bracket = false;
   double time_limit_seconds = 0.0;  // 0: none
 };
 
