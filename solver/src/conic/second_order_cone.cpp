@@ -29,11 +29,10 @@ bool SecondOrderCone::update_scaling(ConstVecRef x, ConstVecRef z) {
   const double x_norm = jordan_norm(x);
   const double z_norm = jordan_norm(z);
   if (x_norm <= 0 || z_norm <= 0) return false;
-  const Vec xbar = x / x_norm;
-  const Vec zbar = z / z_norm;
-  const double gamma = std::sqrt(0.5 * (1.0 + xbar.dot(zbar)));
-  wbar_[0] = (xbar[0] + zbar[0]) / (2.0 * gamma);
-  wbar_.tail(q - 1) = (xbar.tail(q - 1) - zbar.tail(q - 1)) / (2.0 * gamma);
+  // x̄ = x / ‖x‖_J, z̄ = z / ‖z‖_J, without temporaries (see max_step).
+  const double gamma = std::sqrt(0.5 * (1.0 + x.dot(z) / (x_norm * z_norm)));
+  wbar_[0] = (x[0] / x_norm + z[0] / z_norm) / (2.0 * gamma);
+  wbar_.tail(q - 1) = (x.tail(q - 1) / x_norm - z.tail(q - 1) / z_norm) / (2.0 * gamma);
   // Re-normalise so that w̄ᵀJw̄ = 1 holds to rounding (W's formulas depend on it).
   const double w_norm = jordan_norm(wbar_);
   if (w_norm <= 0) return false;
@@ -98,14 +97,22 @@ void SecondOrderCone::lambda_divide(ConstVecRef d, VecRef out) const {
 double SecondOrderCone::max_step(ConstVecRef v, ConstVecRef dv) const {
   // Map v to the identity e by the automorphism H(v̄)⁻¹ (v̄ = v/√det v); then
   // e + α ρ ∈ K  ⇔  α (‖ρ₁‖ − ρ₀) ≤ 1. Same formula as ECOS (conelp.c, lineSearch).
+  // No temporaries: called for every cone several times per iteration (22524 cones on the
+  // façade), where a heap vector per call was a measurable share of the iteration.
   const Eigen::Index q = dim();
   const double v_norm = jordan_norm(v);
   if (v_norm <= 0) return 0.0;
-  const Vec vbar = v / v_norm;
-  const double rho0_unscaled = vbar[0] * dv[0] - vbar.tail(q - 1).dot(dv.tail(q - 1));
-  const double factor = (rho0_unscaled + dv[0]) / (vbar[0] + 1.0);
+  const double inv = 1.0 / v_norm;
+  const double vbar0 = v[0] * inv;
+  const double rho0_unscaled = vbar0 * dv[0] - inv * v.tail(q - 1).dot(dv.tail(q - 1));
+  const double factor = (rho0_unscaled + dv[0]) / (vbar0 + 1.0);
   const double rho0 = rho0_unscaled / v_norm;
-  const double rho1_norm = (dv.tail(q - 1) - factor * vbar.tail(q - 1)).norm() / v_norm;
+  double rho1_sq = 0.0;
+  for (Eigen::Index i = 1; i < q; ++i) {
+    const double r = dv[i] - factor * inv * v[i];
+    rho1_sq += r * r;
+  }
+  const double rho1_norm = std::sqrt(rho1_sq) / v_norm;
   const double excess = rho1_norm - rho0;
   return excess > 0 ? 1.0 / excess : std::numeric_limits<double>::infinity();
 }
