@@ -271,7 +271,9 @@ Solution ConicSolver::Impl::solve() {
       throw ConicSetupError::from_messages("invalid solver settings", messages);
   }
   const Settings& s = settings;
-  const detail::BlasThreads blas_threads(s.blas_threads);
+  // One BLAS thread except inside the factorisations (Settings::blas_threads).
+  const int factor_threads = s.blas_threads > 0 ? s.blas_threads : detail::current_blas_threads();
+  const detail::BlasThreads one_blas_thread(1);
   std::ostream* log = s.verbose ? (s.log_stream ? s.log_stream : &std::cout) : nullptr;
 
   Info info;
@@ -425,7 +427,7 @@ Solution ConicSolver::Impl::solve() {
     for (int attempt = 0; attempt < 2; ++attempt) {
       bool refinement_failed = false;
       const detail::FactorReport report =
-          ne->factor(packed_W2, s.reg_static, s.reg_retry_factor, s.reg_max_retries);
+          ne->factor(packed_W2, s.reg_static, s.reg_retry_factor, s.reg_max_retries, factor_threads);
       info.assembly_seconds += report.assembly_seconds;
       info.factor_seconds += report.factor_seconds;
       info.num_refactor_retries += report.retries;

@@ -120,7 +120,8 @@ void NormalEquations::set_A_values(const Eigen::SparseMatrix<double>& A) {
 }
 
 FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, double reg_static,
-                                     double reg_retry_factor, int reg_max_retries) {
+                                     double reg_retry_factor, int reg_max_retries,
+                                     int blas_threads) {
   FactorReport report;
   auto start = std::chrono::steady_clock::now();
   packed_W2_ = packed_W2;
@@ -159,6 +160,7 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   // equilibrated, so the constant is relative to O(1) entries).
   constexpr double eps = std::numeric_limits<double>::epsilon();
   double shift = reg_static + eps * eps * max_diag;
+  const BlasThreads threads(blas_threads);
   for (int attempt = 0; attempt <= reg_max_retries; ++attempt) {
     if (cholesky_.factorize(values_.data(), shift)) {
       report.ok = true;

@@ -45,8 +45,9 @@ class NormalEquations {
   void set_A_values(const Eigen::SparseMatrix<double>& A);
 
   /// Assembles M_s from the packed W² blocks (ConeSet::pack_W2 order) and factors it.
+  /// blas_threads > 0: OpenBLAS threads during the numeric factorisation.
   FactorReport factor(const std::vector<double>& packed_W2, double reg_static,
-                      double reg_retry_factor, int reg_max_retries);
+                      double reg_retry_factor, int reg_max_retries, int blas_threads = 0);
 
   /// Solves M dy = rhs with the last factor, then preconditioned CG on the exact M until
   /// ‖rhs − M dy‖∞ ≤ target or refine_max_iter steps; returns the CG steps taken.

@@ -23,6 +23,8 @@ GetThreadsFn openblas_get_threads() {
 }
 }  // namespace
 
+int current_blas_threads() { return openblas_get_threads() ? openblas_get_threads()() : 0; }
+
 BlasThreads::BlasThreads(int threads) {
   if (threads <= 0 || !openblas_set_threads() || !openblas_get_threads()) return;
   previous_ = openblas_get_threads()();

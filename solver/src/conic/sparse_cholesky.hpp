@@ -13,11 +13,11 @@
 namespace rbla::conic::detail {
 
 /// Sets OpenBLAS's thread count for its lifetime and restores it after (no effect when the BLAS
-/// in use is not OpenBLAS, or for threads ≤ 0). CHOLMOD's supernodal factor calls the BLAS on
-/// dense blocks of a few dozen rows and its solves call dtrsv/dgemv: with a second thread these
-/// spend much of their time in thread hand-over (sched_yield, futex), most of all on a shared
-/// machine (measured on the 3-D façade settlement problem with the machine loaded: 5.96 s of CPU
-/// time with 2 threads, 2.71 s with 1, and less wall time too).
+/// in use is not OpenBLAS, or for threads ≤ 0). CHOLMOD's solves call dtrsv/dgemv per supernode
+/// and small factorisations call the BLAS on blocks of a few dozen rows: with a second thread
+/// these spend much of their time in thread hand-over (sched_yield, futex), most of all on a
+/// shared machine (3-D façade settlement, 1920 blocks, machine loaded: 5.96 s of CPU time with
+/// 2 threads, 2.71 s with 1, and less wall time too). Large factors gain from threads.
 class BlasThreads {
  public:
   explicit BlasThreads(int threads);
@@ -28,6 +28,9 @@ class BlasThreads {
  private:
   int previous_ = 0;
 };
+
+/// OpenBLAS's current thread count; 0 when the BLAS is not OpenBLAS.
+int current_blas_threads();
 
 class SparseCholesky {
  public:

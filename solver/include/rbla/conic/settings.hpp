@@ -91,9 +91,10 @@ struct Settings {
   /// of letting the system kill the process mid-solve. 0: 80 % of MemAvailable
   /// (/proc/meminfo), no limit where that cannot be read.
   double memory_limit_bytes = 0.0;
-  /// OpenBLAS threads during a solve (restored after); 0 keeps the library's own setting.
-  /// One is fastest here: see detail::BlasThreads.
-  int blas_threads = 1;
+  /// OpenBLAS threads in the numeric factorisations; 0 keeps the library's own setting (usually
+  /// one per core). Everything else in a solve (triangular solves, products) runs on one BLAS
+  /// thread, which was always faster here (see detail::BlasThreads). Restored after the solve.
+  int blas_threads = 0;
 
   // ---- Dense columns (read at construction) ----
   // A column j of the nonnegative block is dense when
