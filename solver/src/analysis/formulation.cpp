@@ -235,11 +235,16 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
         s_min = std::min(s_min, p.dot(t1));
         s_max = std::max(s_max, p.dot(t1));
       }
+      // Corners within the distance tolerance of an end belong to it; for a strip narrower
+      // than the tolerance (a 1e-4 m knife edge in a 1 m model) a quarter of its width decides,
+      // else both ends would merge into one point and the strip would lose its lever arm.
+      const double width = s_max - s_min;
+      const double group_tol = width > 0.0 ? std::min(tol, 0.25 * width) : tol;
       std::vector<int> low, high;
       for (int k = 0; k < static_cast<int>(contact.polygon.size()); ++k) {
         const double s = contact.polygon[k].dot(t1);
-        if (s - s_min <= tol) low.push_back(k);
-        else if (s_max - s <= tol) high.push_back(k);
+        if (s - s_min <= group_tol) low.push_back(k);
+        else if (s_max - s <= group_tol) high.push_back(k);
       }
       groups.push_back(low);
       if (!high.empty()) groups.push_back(high);

@@ -128,6 +128,7 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
                          : model::FrictionModel::Associative;
   const std::string cone = s.value("cone", "exact");
   a.pyramid_bracket = s.value("pyramid_bracket", false);
+  a.check_dead_load = s.value("check_dead_load", true);
   a.cone = cone == "pyramid_inscribed"       ? model::ConeKind::PyramidInscribed
            : cone == "pyramid_circumscribed" ? model::ConeKind::PyramidCircumscribed
                                              : model::ConeKind::Exact;

@@ -106,6 +106,9 @@ struct AnalysisRequest {
   // With a pyramid cone and associative friction: also solve the other pyramid (inscribed and
   // circumscribed bracket the exact cone) and report both.
   bool pyramid_bracket = false;
+  // Load multiplier: also check that alpha = 0 is admissible (one more solve; see
+  // analysis::stands_only_when_pushed).
+  bool check_dead_load = true;
   double time_limit_seconds = 0.0;  // 0: none
 };
 
