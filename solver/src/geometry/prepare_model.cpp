@@ -30,6 +30,40 @@ std::string length_text(double metres, const model::Units& units) {
   return format(metres / units.length_to_m) + " " + units.length_name;
 }
 
+/// First pair of non-adjacent edges of the polygon `corners` (in order) that cross each other
+/// properly, seen along `normal`: -1 in `first` when none. A pentagram or a bow tie crosses; edges
+/// that only touch or overlap (T-junctions, repeated vertices from mesh exports) do not count.
+/// O(n^2) in the polygon's corners.
+void first_crossing(const std::vector<Vec3>& corners, const Vec3& normal, int& first, int& second) {
+  first = second = -1;
+  const int n = static_cast<int>(corners.size());
+  if (n < 4) return;
+  // 2-D coordinates in the polygon's plane.
+  Vec3 u = normal.unitOrthogonal(), v = normal.cross(u);
+  std::vector<Eigen::Vector2d> p(n);
+  for (int i = 0; i < n; ++i) p[i] = Eigen::Vector2d(corners[i].dot(u), corners[i].dot(v));
+  auto orient = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    const double d = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    // Relative to the edge lengths, so that nearly collinear corners count as collinear.
+    const double scale = (b - a).norm() * (c - a).norm();
+    return d > 1e-12 * scale ? 1 : d < -1e-12 * scale ? -1 : 0;
+  };
+  for (int i = 0; i < n; ++i) {
+    const int i1 = (i + 1) % n;
+    for (int j = i + 2; j < n; ++j) {
+      const int j1 = (j + 1) % n;
+      if (j1 == i) continue;  // adjacent through the closing edge
+      const int o1 = orient(p[i], p[i1], p[j]), o2 = orient(p[i], p[i1], p[j1]);
+      const int o3 = orient(p[j], p[j1], p[i]), o4 = orient(p[j], p[j1], p[i1]);
+      if (o1 * o2 < 0 && o3 * o4 < 0) {
+        first = i;
+        second = j;
+        return;
+      }
+    }
+  }
+}
+
 void prepare_block(model::Block& block, std::size_t index, double model_tolerance, const model::Units& units,
                    std::vector<InputIssue>& errors, std::vector<model::Warning>& warnings) {
   const std::string pointer = "/blocks/" + std::to_string(index);
@@ -62,6 +96,18 @@ void prepare_block(model::Block& block, std::size_t index, double model_toleranc
       errors.push_back({face_pointer, name + ": face " + std::to_string(f) + " has zero area"});
       faces_ok = false;
       continue;
+    }
+    {
+      std::vector<Vec3> corners;
+      for (const int k : block.faces[f]) corners.push_back(block.vertices[k]);
+      int e1 = -1, e2 = -1;
+      first_crossing(corners, face.normal, e1, e2);
+      if (e1 >= 0) {
+        errors.push_back({face_pointer, name + ": face " + std::to_string(f) + " is self-intersecting (its edges " +
+                                            std::to_string(e1) + " and " + std::to_string(e2) + " cross)"});
+        faces_ok = false;
+        continue;
+      }
     }
     if (face.max_plane_deviation > std::max(model_tolerance, 1e-6 * diagonal)) {
       warnings.push_back({"non_planar_face",
@@ -129,6 +175,13 @@ void prepare_given_interface(model::ContactInterface& contact, std::size_t index
     errors.push_back({pointer + "/polygon", "interface '" + contact.id + "' has a polygon of zero area"});
     return;
   }
+  int e1 = -1, e2 = -1;
+  first_crossing(contact.polygon, face.normal, e1, e2);
+  if (e1 >= 0) {
+    errors.push_back({pointer + "/polygon", "interface '" + contact.id + "' has a self-intersecting polygon (its edges " +
+                                                std::to_string(e1) + " and " + std::to_string(e2) + " cross)"});
+    return;
+  }
   if (face.max_plane_deviation > tolerance) {
     errors.push_back({pointer + "/polygon", "interface '" + contact.id + "' is not planar: a corner is " +
                                                 length_text(face.max_plane_deviation, m.units) +
@@ -152,6 +205,14 @@ PrepareReport prepare_model(model::Model& m) {
   const double tolerance = m.distance_tolerance();
 
   std::vector<InputIssue> errors;
+  // A distance tolerance as large as the model merges everything (the schema caps the relative
+  // one at 0.1 of the diagonal; the absolute one has no cap there): refuse it rather than answer.
+  if (m.detection.distance_tolerance && *m.detection.distance_tolerance > 0.1 * m.bounding_box().diagonal()) {
+    throw model::ModelError("/detection/distance_tolerance",
+                            "is " + length_text(*m.detection.distance_tolerance, m.units) +
+                                ", more than a tenth of the model's size (" +
+                                length_text(m.bounding_box().diagonal(), m.units) + " across)");
+  }
   for (std::size_t i = 0; i < m.blocks.size(); ++i) {
     prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings);
   }
