@@ -43,6 +43,9 @@ class Cone {
   virtual void lambda_divide(ConstVecRef d, VecRef out) const = 0;
   /// Largest α ≥ 0 with v + α dv ∈ K for interior v (+inf if unbounded).
   virtual double max_step(ConstVecRef v, ConstVecRef dv) const = 0;
+  /// max_step(λ, dv) for the λ of the last update_scaling, with what depends on λ alone cached
+  /// (the solver asks this several times per iteration for every cone).
+  virtual double max_step_from_lambda(ConstVecRef dv) const = 0;
   /// Gondzio's centrality target for a trial complementarity product v: out = P(v) − v, where P
   /// moves each eigenvalue of v (each entry for R_+; v₀ ± ‖v₁‖ along v's own spectral frame for
   /// an SOC) into [lo, hi]; a decrease is capped at −hi (Gondzio 1996, §3).
@@ -77,6 +80,7 @@ class NonnegativeCone final : public Cone {
   void jordan_product(ConstVecRef a, ConstVecRef b, VecRef out) const override;
   void lambda_divide(ConstVecRef d, VecRef out) const override;
   double max_step(ConstVecRef v, ConstVecRef dv) const override;
+  double max_step_from_lambda(ConstVecRef dv) const override { return max_step(lambda_, dv); }
   void centrality_correction(ConstVecRef v, double lo, double hi, VecRef out) const override;
   void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
   double* pack_W2(double* out) const override;
@@ -104,18 +108,24 @@ class SecondOrderCone final : public Cone {
   void jordan_product(ConstVecRef a, ConstVecRef b, VecRef out) const override;
   void lambda_divide(ConstVecRef d, VecRef out) const override;
   double max_step(ConstVecRef v, ConstVecRef dv) const override;
+  double max_step_from_lambda(ConstVecRef dv) const override {
+    return step_to_boundary(lambda_, lambda_norm_, dv);
+  }
   void centrality_correction(ConstVecRef v, double lo, double hi, VecRef out) const override;
   void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
   double* pack_W2(double* out) const override;
 
   /// √(v₀² − ‖v₁‖²) computed as √((v₀ − ‖v₁‖)(v₀ + ‖v₁‖)); ≤ 0 → returns −1 (not interior).
   static double jordan_norm(ConstVecRef v);
+  /// max_step for interior v with v_norm = jordan_norm(v) > 0.
+  static double step_to_boundary(ConstVecRef v, double v_norm, ConstVecRef dv);
 
  private:
   Vec wbar_;
   Vec v_;
   double beta_ = 1.0;
   Vec lambda_;
+  double lambda_norm_ = 1.0;  // jordan_norm(lambda_)
 };
 
 /// The product cone in variable order, with whole-vector versions of the cone operations.
@@ -136,6 +146,7 @@ class ConeSet {
   void jordan_product(const Vec& a, const Vec& b, Vec& out) const;
   void lambda_divide(const Vec& d, Vec& out) const;
   double max_step(const Vec& v, const Vec& dv) const;
+  double max_step_from_lambda(const Vec& dv) const;
   void centrality_correction(const Vec& v, double lo, double hi, Vec& out) const;
   std::vector<ScalingBlock> scaling_blocks() const;
   void pack_W2(std::vector<double>& out) const;  ///< out must be sized Σ block size²

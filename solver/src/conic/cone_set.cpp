@@ -75,6 +75,14 @@ void ConeSet::centrality_correction(const Vec& v, double lo, double hi, Vec& out
   }
 }
 
+double ConeSet::max_step_from_lambda(const Vec& dv) const {
+  double step = std::numeric_limits<double>::infinity();
+  for (const auto& k : cones_) {
+    step = std::min(step, k->max_step_from_lambda(dv.segment(k->offset(), k->dim())));
+  }
+  return step;
+}
+
 std::vector<ScalingBlock> ConeSet::scaling_blocks() const {
   std::vector<ScalingBlock> blocks;
   for (const auto& k : cones_) k->append_scaling_blocks(blocks);

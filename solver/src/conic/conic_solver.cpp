@@ -504,7 +504,7 @@ Solution ConicSolver::Impl::solve() {
         cones.mul_Winv(ddx, scaled_dx);
         cones.mul_W(ddz, scaled_dz);
         double alpha =
-            std::min(cones.max_step(lambda, scaled_dx), cones.max_step(lambda, scaled_dz));
+            std::min(cones.max_step_from_lambda(scaled_dx), cones.max_step_from_lambda(scaled_dz));
         if (dtau < 0) alpha = std::min(alpha, -tau / dtau);
         if (dkappa < 0) alpha = std::min(alpha, -kappa / dkappa);
         return alpha;

@@ -43,7 +43,8 @@ bool SecondOrderCone::update_scaling(ConstVecRef x, ConstVecRef z) {
   beta_ = std::sqrt(x_norm / z_norm);
   // λ = W z; CVXOPT computes the same quantity.
   mul_W(z, lambda_);
-  return jordan_norm(lambda_) > 0;
+  lambda_norm_ = jordan_norm(lambda_);
+  return lambda_norm_ > 0;
 }
 
 void SecondOrderCone::lambda(VecRef out) const { out = lambda_; }
@@ -99,9 +100,13 @@ double SecondOrderCone::max_step(ConstVecRef v, ConstVecRef dv) const {
   // e + α ρ ∈ K  ⇔  α (‖ρ₁‖ − ρ₀) ≤ 1. Same formula as ECOS (conelp.c, lineSearch).
   // No temporaries: called for every cone several times per iteration (22524 cones on the
   // façade), where a heap vector per call was a measurable share of the iteration.
-  const Eigen::Index q = dim();
   const double v_norm = jordan_norm(v);
   if (v_norm <= 0) return 0.0;
+  return step_to_boundary(v, v_norm, dv);
+}
+
+double SecondOrderCone::step_to_boundary(ConstVecRef v, double v_norm, ConstVecRef dv) {
+  const Eigen::Index q = v.size();
   const double inv = 1.0 / v_norm;
   const double vbar0 = v[0] * inv;
   const double rho0_unscaled = vbar0 * dv[0] - inv * v.tail(q - 1).dot(dv.tail(q - 1));

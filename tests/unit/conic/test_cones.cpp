@@ -45,6 +45,8 @@ TEST(ConicCones, SocNesterovToddScalingIdentities) {
       cone.mul_W(v, tmp);
       cone.mul_W(tmp, wwv);
       EXPECT_LT((w2v - wwv).norm(), 1e-9 * (1 + wwv.norm()));
+      // The cached step from λ equals the general one at v = λ.
+      EXPECT_EQ(cone.max_step_from_lambda(v), cone.max_step(lambda, v));
       // λ ∘ (λ \ d) = d.
       Vec divided(q), product(q);
       cone.lambda_divide(v, divided);
