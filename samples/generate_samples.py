@@ -21,6 +21,7 @@ convex), the written centroid/volume match, and the ids are unique.
 Examples:
   python3 samples/generate_samples.py block --height 3 -o /tmp/block.json
   python3 samples/generate_samples.py facade --settling-fraction 0.3 -o /tmp/facade.json
+  python3 samples/generate_samples.py church --load seismic-y --blocks 8000 -o /tmp/church.json
   python3 samples/generate_samples.py all --dir samples/ --self-check
 """
 
@@ -532,6 +533,381 @@ def scene_facade(args):
 
 
 # --------------------------------------------------------------------------------------------
+# Church façade: running bond with arched openings and a rose window
+# --------------------------------------------------------------------------------------------
+
+# Openings of the church façade as fractions of the wall width W and height H (22 m x 19 m at
+# scale 1): (name, kind, centre x / W, sill z / H, springing (arch) or centre (rose) z / H,
+# intrados radius / W). Doors have their sill at 0. Heights are snapped to course lines (the rose
+# centre to mid-course), so every springing line and sill is a bed joint.
+CHURCH_OPENINGS = [
+    ("portal", "arch", 0.5, 0.0, 4.0 / 19, 1.32 / 22),
+    ("rose", "rose", 0.5, None, 9.75 / 19, 1.6 / 22),
+    ("portal_left", "arch", 0.2, 0.0, 3.0 / 19, 0.88 / 22),
+    ("portal_right", "arch", 0.8, 0.0, 3.0 / 19, 0.88 / 22),
+    ("window_left", "arch", 0.2, 7.0 / 19, 10.0 / 19, 0.66 / 22),
+    ("window_right", "arch", 0.8, 7.0 / 19, 10.0 / 19, 0.66 / 22),
+    ("lancet_left", "arch", 8.0 / 22, 13.0 / 19, 15.0 / 19, 0.44 / 22),
+    ("lancet_right", "arch", 14.0 / 22, 13.0 / 19, 15.0 / 19, 0.44 / 22),
+]
+CHURCH_WIDTH, CHURCH_HEIGHT = 22.0, 19.0     # m, the wall at scale 1
+CHURCH_BLOCKS_AT_SCALE_1 = 1674              # blocks (base included) written at scale 1, defaults
+
+
+def _cross2(o, a, b):
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+
+def _area2(poly):
+    s = 0.0
+    for i in range(len(poly)):
+        x0, z0 = poly[i]
+        x1, z1 = poly[(i + 1) % len(poly)]
+        s += x0 * z1 - x1 * z0
+    return 0.5 * s
+
+
+def _clip(poly, a, b, keep_left):
+    """Sutherland-Hodgman: the part of a convex polygon on the left (or right) of the line a->b."""
+    sgn = 1.0 if keep_left else -1.0
+    out = []
+    n = len(poly)
+    for i in range(n):
+        p, q = poly[i], poly[(i + 1) % n]
+        dp, dq = sgn * _cross2(a, b, p), sgn * _cross2(a, b, q)
+        if dp >= 0.0:
+            out.append(p)
+        if (dp > 0.0 and dq < 0.0) or (dp < 0.0 and dq > 0.0):
+            t = dp / (dp - dq)
+            out.append((p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])))
+    return out
+
+
+def _clean(poly, tol=1e-9):
+    """Drop repeated and collinear vertices (a collinear vertex would split one side face in two)."""
+    pts = []
+    for p in poly:
+        if not pts or abs(p[0] - pts[-1][0]) > tol or abs(p[1] - pts[-1][1]) > tol:
+            pts.append(p)
+    while len(pts) > 1 and abs(pts[0][0] - pts[-1][0]) <= tol and abs(pts[0][1] - pts[-1][1]) <= tol:
+        pts.pop()
+    changed = True
+    while changed and len(pts) >= 3:
+        changed = False
+        for i in range(len(pts)):
+            a, p, b = pts[i - 1], pts[i], pts[(i + 1) % len(pts)]
+            lab = math.hypot(b[0] - a[0], b[1] - a[1])
+            if abs(_cross2(a, p, b)) <= tol * max(lab, 1.0):
+                del pts[i]
+                changed = True
+                break
+    return pts
+
+
+def _segment_in_box(p, q, x0, x1, z0, z1):
+    """Length fraction of segment p-q inside the open box (Liang-Barsky); 0 when it only touches."""
+    t0, t1 = 0.0, 1.0
+    dx, dz = q[0] - p[0], q[1] - p[1]
+    for d, lo, hi, v in ((dx, x0, x1, p[0]), (dz, z0, z1, p[1])):
+        if abs(d) < 1e-15:
+            if not lo < v < hi:
+                return 0.0
+            continue
+        ta, tb = (lo - v) / d, (hi - v) / d
+        if ta > tb:
+            ta, tb = tb, ta
+        t0, t1 = max(t0, ta), min(t1, tb)
+        if t1 <= t0:
+            return 0.0
+    return t1 - t0
+
+
+def _circle_point(xc, zc, r, phi):
+    """Point at angle phi on a circle; exact at the quarter angles, so springings stay on bed joints."""
+    k = phi / (0.5 * math.pi)
+    if abs(k - round(k)) < 1e-12:
+        c, s = ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[int(round(k)) % 4]
+    else:
+        c, s = math.cos(phi), math.sin(phi)
+    return (xc + r * c, zc + r * s)
+
+
+class _Ring(object):
+    """A ring of voussoirs: a round arch (half ring springing at zc) or a rose (full ring).
+
+    The extrados is a polygon whose vertices are where the extrados circle crosses a bed joint
+    (so each wall course meets one chord per side, and the wall pieces beside it stay convex
+    without extra cuts), the springings, the crown and the bottom of a rose. Extra vertices
+    between bed joints were tried: the vertical cuts they need left sliver triangles on the
+    flanks. The intrados is the polygon of the voussoir joints. Voussoir j lies between the radial lines at two intrados angles, inside
+    the extrados polygon and outside the intrados chord: a convex polygon whose outer faces are
+    parts of extrados chords, so it shares planar faces with the wall pieces cut along them.
+    """
+
+    def __init__(self, name, xc, zc, ri, re, full, hb, voussoir_len):
+        self.name, self.xc, self.zc, self.ri, self.re, self.full = name, xc, zc, ri, re, full
+        two_pi = 2.0 * math.pi
+        angles = {}  # angle -> exact point
+        k_lo = int(math.floor((zc - re) / hb)) - 1
+        k_hi = int(math.ceil((zc + re) / hb)) + 1
+        for k in range(k_lo, k_hi + 1):
+            z = k * hb
+            if abs(z - zc) >= re - 1e-9 or (not full and z < zc - 1e-9):
+                continue
+            dx = math.sqrt(re * re - (z - zc) ** 2)
+            phi = math.asin((z - zc) / re)
+            angles[phi % two_pi] = (xc + dx, z)
+            angles[(math.pi - phi) % two_pi] = (xc - dx, z)
+        for phi in ((0.5 * math.pi, 1.5 * math.pi) if full else (0.0, 0.5 * math.pi, math.pi)):
+            angles.setdefault(phi, _circle_point(xc, zc, re, phi))
+        self.extrados = [(a, angles[a]) for a in sorted(angles)]  # (angle, point), increasing
+        rm = 0.5 * (ri + re)
+        span = two_pi if full else math.pi
+        n = max(3, int(round(span * rm / voussoir_len)))
+        if not full and n % 2 == 0:
+            n += 1  # a keystone at the crown
+        self.n_voussoirs = n
+        offset = math.pi / n if full else 0.0
+        self.joints = [offset + span * i / n for i in range(n + 1)]
+        # the hole the ring and its void cut out of the wall (counter-clockwise)
+        self.hole = [p for _, p in self.extrados]
+
+    def _extrados_at(self, phi):
+        """Where the ray from the centre at angle phi meets the extrados polygon."""
+        ext = self.extrados
+        two_pi = 2.0 * math.pi
+        seq = ext + ([(ext[0][0] + two_pi, ext[0][1])] if self.full else [])
+        if self.full:
+            phi = phi % two_pi
+            if phi < seq[0][0]:
+                phi += two_pi
+        for (a, pa), (b, pb) in zip(seq, seq[1:]):
+            if abs(phi - a) < 1e-12:
+                return pa
+            if abs(phi - b) < 1e-12:
+                return pb
+            if a < phi < b:
+                d = (math.cos(phi), math.sin(phi))
+                ex, ez = pb[0] - pa[0], pb[1] - pa[1]
+                # centre + t d = pa + s e
+                det = d[0] * (-ez) - d[1] * (-ex)
+                rx, rz = pa[0] - self.xc, pa[1] - self.zc
+                s = (d[0] * rz - d[1] * rx) / det
+                return (pa[0] + s * ex, pa[1] + s * ez)
+        raise ValueError("%s: no extrados edge at angle %r" % (self.name, phi))
+
+    def voussoirs(self):
+        two_pi = 2.0 * math.pi
+        ext = self.extrados
+        if self.full:
+            ext = ext + [(a + two_pi, p) for a, p in ext]
+        for j in range(self.n_voussoirs):
+            a, b = self.joints[j], self.joints[j + 1]
+            poly = [_circle_point(self.xc, self.zc, self.ri, a),
+                    _circle_point(self.xc, self.zc, self.ri, b),
+                    self._extrados_at(b)]
+            between = [p for phi, p in ext if a + 1e-12 < phi < b - 1e-12]
+            poly += list(reversed(between))
+            poly.append(self._extrados_at(a))
+            yield _clean(poly)
+
+    def bbox(self):
+        z_lo = self.zc - self.re if self.full else self.zc
+        return (self.xc - self.re, self.xc + self.re, z_lo, self.zc + self.re)
+
+
+def church_layout(scale, bl, hb, ring_min, voussoir_len):
+    """Wall size and openings at a scale: (nb blocks per course, nc courses, holes, rings, notes).
+
+    Openings are placed in the order of CHURCH_OPENINGS (the most important first). Each keeps a
+    block length from the wall's edges and a block length (a course height vertically) from the
+    openings already placed; at small scales, where the rounded ring sizes make openings
+    relatively larger, an opening that collides is moved up by up to 3 courses, and left out
+    when that does not help. The notes say which.
+    """
+    nb = max(4, int(round(scale * CHURCH_WIDTH / 0.44)))
+    nc = max(4, int(round(scale * CHURCH_HEIGHT / 0.50)))
+    W, H = nb * bl, nc * hb
+    holes, rings, boxes, notes = [], [], [], []
+
+    def build(kind, name, xc, ri, fsill, fz, shift):
+        ring_t = max(ring_min, 0.25 * ri)
+        if kind == "arch":
+            zs = (round(fz * H / hb) + shift) * hb
+            sill = (round(fsill * H / hb) + (shift if fsill > 0.0 else 0)) * hb
+            # extrados radius: the crown at mid-course, so no sliver course above it
+            re = (math.ceil((ri + ring_t) / hb - 0.5) + 0.5) * hb
+            if zs - sill < hb - SNAP:
+                return None
+            ring = _Ring(name, xc, zs, ri, re, False, hb, voussoir_len)
+            rect = [(xc - ri, sill), (xc + ri, sill), (xc + ri, zs), (xc - ri, zs)]
+            return ring, [rect, ring.hole], (xc - re, xc + re, sill, zs + re)
+        zc = (math.floor(fz * H / hb) + 0.5 + shift) * hb
+        re = math.ceil((ri + ring_t) / hb) * hb
+        ring = _Ring(name, xc, zc, ri, re, True, hb, voussoir_len)
+        return ring, [ring.hole], ring.bbox()
+
+    def fits(a):
+        if a[0] < bl - SNAP or a[1] > W - bl + SNAP or a[3] > H - hb + SNAP:
+            return False
+        return not any(a[0] < b[1] + bl and b[0] < a[1] + bl and a[2] < b[3] + hb
+                       and b[2] < a[3] + hb for b in boxes)
+
+    for name, kind, fx, fsill, fz, fr in CHURCH_OPENINGS:
+        placed = None
+        for shift in range(4):
+            cand = build(kind, name, fx * W, fr * W, fsill, fz, shift)
+            if cand is not None and fits(cand[2]):
+                placed = cand
+                if shift:
+                    notes.append("%s moved up %d course%s" % (name, shift, "s" if shift > 1 else ""))
+                break
+        if placed is None:
+            notes.append("%s left out (does not fit)" % name)
+            continue
+        ring, polys, box_ = placed
+        holes.extend((name, poly) for poly in polys)
+        rings.append(ring)
+        boxes.append(box_)
+    return nb, nc, holes, rings, notes
+
+
+def church_course_pieces(c, nb, bl, hb, holes, min_joint_distance):
+    """Convex pieces (x-z polygons) of course c of the running-bond wall with the holes cut out.
+
+    Regular joints closer than min_joint_distance to where a hole's edge crosses the course are
+    dropped (no slivers); the course is also cut below every hole vertex strictly inside it, so
+    that in each cell at most one chord per side bounds the hole and the part outside the hole
+    is an intersection of half-planes (convex); _convex_minus cuts each cell by each hole.
+    """
+    z0, z1 = c * hb, (c + 1) * hb
+    L = nb * bl
+    spans, cuts = [], []
+    for _, poly in holes:
+        n = len(poly)
+        for i in range(n):
+            p, q = poly[i], poly[(i + 1) % n]
+            if z0 + SNAP < p[1] < z1 - SNAP:
+                cuts.append(p[0])
+            if _segment_in_box(p, q, -1e30, 1e30, z0, z1) <= 0.0:
+                continue
+            # x-range of the edge within the course
+            xs = []
+            for zz in (z0, z1):
+                if (p[1] - zz) * (q[1] - zz) < 0.0:
+                    xs.append(p[0] + (zz - p[1]) / (q[1] - p[1]) * (q[0] - p[0]))
+            for r in (p, q):
+                if z0 - SNAP <= r[1] <= z1 + SNAP:
+                    xs.append(r[0])
+            spans.append((min(xs), max(xs)))
+    joints = [x for x in course_breakpoints(nb, bl, c % 2 == 1)
+              if x <= SNAP or x >= L - SNAP
+              or not any(a - min_joint_distance < x < b + min_joint_distance for a, b in spans)]
+    xs = _merge_sorted(joints + cuts)
+    pieces = []
+    for xa, xb in zip(xs[:-1], xs[1:]):
+        cell = [[(xa, z0), (xb, z0), (xb, z1), (xa, z1)]]
+        for _, hole in holes:  # subtract the holes one after the other
+            cell = [q for poly in cell for q in _convex_minus(poly, hole)]
+        pieces.extend(cell)
+    return pieces
+
+
+def _convex_minus(poly, hole):
+    """Convex pieces of convex poly minus convex hole (both counter-clockwise).
+
+    With e_1..e_k the hole's edges that cross poly's interior, poly minus hole is the disjoint
+    union of poly & out(e_i) & in(e_1) & ... & in(e_{i-1}): a point of poly outside the hole is
+    on the outer side of an edge that crosses poly (the segment from it to a point of poly
+    inside the hole crosses the hole's boundary inside poly).
+    """
+    n = len(hole)
+    xs = [p[0] for p in poly]
+    zs = [p[1] for p in poly]
+    box_ = (min(xs), max(xs), min(zs), max(zs))
+    edges = []
+    for i in range(n):
+        a, b = hole[i], hole[(i + 1) % n]
+        if _segment_in_box(a, b, *box_) <= 1e-12:
+            continue
+        # the edge crosses poly's interior when poly has vertices strictly on both sides
+        sides = [_cross2(a, b, p) for p in poly]
+        if max(sides) > 1e-12 and min(sides) < -1e-12:
+            edges.append((a, b))
+    if not edges:
+        mx = sum(xs) / len(xs)
+        mz = sum(zs) / len(zs)
+        inside = all(_cross2(hole[i], hole[(i + 1) % n], (mx, mz)) > 0.0 for i in range(n))
+        return [] if inside else [poly]
+    out = []
+    for i, (a, b) in enumerate(edges):
+        piece = poly
+        for a2, b2 in edges[:i]:
+            piece = _clip(piece, a2, b2, True)
+        piece = _clip(piece, a, b, False)
+        piece = _clean(piece) if len(piece) >= 3 else []
+        if len(piece) >= 3 and abs(_area2(piece)) > 1e-9:
+            out.append(piece)
+    return out
+
+
+def scene_church(args):
+    bl, bt, hb = args.block_length, args.block_thickness, args.block_height
+    if args.blocks is not None:
+        scale = math.sqrt(args.blocks / float(CHURCH_BLOCKS_AT_SCALE_1))
+    else:
+        scale = args.scale
+    nb, nc, holes, rings, notes = church_layout(scale, bl, hb, args.ring_thickness,
+                                                args.voussoir_length)
+    L = nb * bl
+    m, t = args.base_margin, args.base_thickness
+    model = model_skeleton("", args)
+    blocks = model["blocks"]
+    if args.load == "settlement":
+        f = args.settling_fraction
+        if not 0.0 < f < 1.0:
+            raise SystemExit("church: --settling-fraction must be in (0, 1)")
+        (fa, fb), (ma, mb) = _base_split(L, m, f, args.support_gap)
+        blocks.append(make_block("base_fixed", *box(fa, fb, -m, bt + m, -t, 0.0), role="fixed"))
+        blocks.append(make_block("base_moving", *box(ma, mb, -m, bt + m, -t, 0.0),
+                                 role="moving_support"))
+        what = "a fixed base and a moving support under the right %g %%; settlement" % (100 * f)
+        model["analysis"] = {"type": "settlement"}
+    else:
+        blocks.append(make_block("base", *box(-m, L + m, -m, bt + m, -t, 0.0), role="fixed"))
+        axis = args.load[-1]
+        what = "a fixed base; seismic +%s (%s)" % (axis, "in plane" if axis == "x" else "out of plane")
+        model["analysis"] = seismic_analysis([1, 0, 0] if axis == "x" else [0, 1, 0])
+    wc = len(str(nc - 1))
+    n_wall = 0
+    min_area = float("inf")
+    for c in range(nc):
+        pieces = church_course_pieces(c, nb, bl, hb, holes, args.joint_clearance * bl)
+        wk = len(str(max(len(pieces) - 1, 1)))
+        for k, poly in enumerate(pieces):
+            min_area = min(min_area, abs(_area2(poly)))
+            blocks.append(make_block("r%0*d_%0*d" % (wc, c, wk, k), *prism_xz(poly, 0.0, bt)))
+        n_wall += len(pieces)
+    n_vous = 0
+    for ring in rings:
+        wv = len(str(ring.n_voussoirs - 1))
+        for j, poly in enumerate(ring.voussoirs()):
+            min_area = min(min_area, abs(_area2(poly)))
+            blocks.append(make_block("%s_v%0*d" % (ring.name, wv, j), *prism_xz(poly, 0.0, bt)))
+            n_vous += 1
+    model["title"] = ("church facade %g x %g m (scale %.4g): running bond of %g x %g x %g m blocks "
+                      "(length x course height x thickness) with arched openings (%s)%s; "
+                      "%d blocks on %s"
+                      % (L, nc * hb, scale, bl, hb, bt, ", ".join(r.name for r in rings),
+                         "; " + "; ".join(notes) if notes else "", len(blocks), what))
+    sys.stderr.write("church: scale %.4g, wall %g x %g m (%d courses of %d blocks), %d wall pieces, "
+                     "%d voussoirs in %d rings, %d blocks in all; smallest block face %.3g m2%s\n"
+                     % (scale, L, nc * hb, nc, nb, n_wall, n_vous, len(rings), len(blocks), min_area,
+                        "".join("; " + n for n in notes)))
+    return model
+
+
+# --------------------------------------------------------------------------------------------
 # CLI
 # --------------------------------------------------------------------------------------------
 
@@ -550,6 +926,7 @@ SCENES = {
     "wall-opening": scene_wall_opening,
     "wall-settlement": scene_wall_settlement,
     "facade": scene_facade,
+    "church": scene_church,
 }
 
 
@@ -643,6 +1020,34 @@ def build_parser():
     g.add_argument("--seismic", choices=["x", "y"], default=None,
                    help="seismic analysis along +x or +y (the default is +x)")
     s.add_argument("--support-gap", type=float, default=0.01, help=gap_help)
+
+    s = sub.add_parser("church", parents=[common, out, base], formatter_class=D,
+                       help="church facade with arched doors and windows and a rose window "
+                            "(~1900 blocks; --scale or --blocks from ~200 to ~50000)")
+    g = s.add_mutually_exclusive_group()
+    g.add_argument("--scale", type=float, default=1.0,
+                   help="linear scale of the 22 x 19 m wall and of its openings; the blocks keep "
+                        "their size, so the block count grows as scale^2")
+    g.add_argument("--blocks", type=int, default=None,
+                   help="approximate number of blocks: sets scale = sqrt(N / %d)"
+                        % CHURCH_BLOCKS_AT_SCALE_1)
+    s.add_argument("--load", choices=["settlement", "seismic-x", "seismic-y"], default="settlement",
+                   help="settlement of the right part of the base, or seismic along +x (in plane, "
+                        "planar LP) or +y (out of plane, 3-D)")
+    s.add_argument("--settling-fraction", type=float, default=0.5,
+                   help="fraction of the wall length (right end) over the moving support")
+    s.add_argument("--support-gap", type=float, default=0.01, help=gap_help)
+    s.add_argument("--block-length", type=float, default=0.44, help="along x, m")
+    s.add_argument("--block-height", type=float, default=0.50, help="course height, along z, m")
+    s.add_argument("--block-thickness", type=float, default=0.38, help="along y, m")
+    s.add_argument("--ring-thickness", type=float, default=0.30,
+                   help="smallest voussoir ring thickness, m (also at least a quarter of the "
+                        "opening's radius; rounded up so the crown is at mid-course)")
+    s.add_argument("--voussoir-length", type=float, default=0.45,
+                   help="target length of a voussoir along the ring's mid-line, m")
+    s.add_argument("--joint-clearance", type=float, default=0.35,
+                   help="running-bond joints closer than this many block lengths to an opening's "
+                        "edge are dropped, so no sliver is cut")
 
     s = sub.add_parser("all", parents=[common], formatter_class=D,
                        help="regenerate every bundled sample with its default sizes")
