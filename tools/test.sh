@@ -1,7 +1,14 @@
 #!/usr/bin/env bash
 # Second of README's two commands: install what is missing, build, run the whole test suite.
+# Extra arguments select tests of the main run (ctest -L unit, -R name, ...) and then skip the
+# two whole-suite stages that follow it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/install_deps.sh
 tools/build.sh
 ctest --test-dir build --output-on-failure -j"$(nproc)" "$@"
+[ $# -eq 0 ] || exit 0
+# Memory errors and undefined behaviour the Release run cannot see: the suite under ASan+UBSan.
+tools/sanitize.sh
+# A minute of coverage-guided fuzzing of the model stage, starting from tests/fuzz/corpus.
+tools/fuzz.sh --smoke
