@@ -49,6 +49,7 @@ namespace rbla::stiff {
 
 using nlohmann::json;
 using rbla::testing::box_block;
+using rbla::testing::running_bond_blocks;
 
 enum class Expect { Collapse, NoMechanism, CannotStand, TimeLimit };
 
@@ -602,26 +603,7 @@ inline std::vector<StiffCase> stiff_cases() {
   return out;
 }
 
-/// Running-bond wall (`courses` x `bricks`), for the rescaled-twin checks.
-inline json running_bond_blocks(int bricks, int courses, double s = 1.0, double lb = 0.4, double hb = 0.2,
-                                double d = 0.2) {
-  json blocks = json::array({sbox("base", s, -0.5, -0.3, -0.3, bricks * lb + 0.5, d + 0.3, 0.0, "fixed")});
-  for (int c = 0; c < courses; ++c) {
-    std::vector<double> joints;
-    if (c % 2 == 0) {
-      for (int i = 0; i <= bricks; ++i) joints.push_back(i * lb);
-    } else {
-      joints.push_back(0.0);
-      for (int i = 0; i < bricks; ++i) joints.push_back((i + 0.5) * lb);
-      joints.push_back(bricks * lb);
-    }
-    for (std::size_t i = 0; i + 1 < joints.size(); ++i) {
-      blocks.push_back(sbox("W" + std::to_string(c) + "_" + std::to_string(i), s, joints[i], 0.0, c * hb,
-                            joints[i + 1], d, (c + 1) * hb));
-    }
-  }
-  return blocks;
-}
+// running_bond_blocks (tests/support/model_builder.hpp): the wall of the rescaled-twin checks.
 
 /// A model and its well-conditioned twin (the same mechanics at 1 m scale, in kN): the
 /// reference is the twin's alpha, so no closed form is needed (STYLE.md allows a twin run by

@@ -54,4 +54,31 @@ inline json scaled(json model, double factor) {
   return model;
 }
 
+/// A running-bond wall: `courses` courses of bricks lb x d x hb, `bricks` bricks long; odd
+/// courses start and end with half bricks. Lies on [0, bricks lb] x [0, d] x [0, courses hb], on a
+/// fixed base slab; every coordinate is multiplied by `scale` (the same wall in other file units).
+inline json running_bond_blocks(int bricks, int courses, double scale = 1.0, double lb = 0.4,
+                                double hb = 0.2, double d = 0.2) {
+  auto box = [scale](const std::string& id, double x0, double y0, double z0, double x1, double y1,
+                     double z1, const std::string& role = "free") {
+    return box_block(id, scale * x0, scale * y0, scale * z0, scale * x1, scale * y1, scale * z1, role);
+  };
+  json blocks = json::array({box("base", -0.5, -0.3, -0.3, bricks * lb + 0.5, d + 0.3, 0.0, "fixed")});
+  for (int c = 0; c < courses; ++c) {
+    std::vector<double> joints;
+    if (c % 2 == 0) {
+      for (int i = 0; i <= bricks; ++i) joints.push_back(i * lb);
+    } else {
+      joints.push_back(0.0);
+      for (int i = 0; i < bricks; ++i) joints.push_back((i + 0.5) * lb);
+      joints.push_back(bricks * lb);
+    }
+    for (std::size_t i = 0; i + 1 < joints.size(); ++i) {
+      blocks.push_back(box("W" + std::to_string(c) + "_" + std::to_string(i), joints[i], 0.0, c * hb,
+                           joints[i + 1], d, (c + 1) * hb));
+    }
+  }
+  return blocks;
+}
+
 }  // namespace rbla::testing

@@ -1,6 +1,8 @@
 // The rbla command as a user runs it: exit codes, messages naming the field, no partial output.
 #include <gtest/gtest.h>
 
+#include "support/cli_runner.hpp"
+
 #include <sys/wait.h>
 
 #include <array>
@@ -15,23 +17,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // standard output and standard error together
-};
-
-RunResult run(const std::string& arguments) {
-  const std::string command = std::string(RBLA_BINARY) + " " + arguments + " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using rbla::testing::RunResult;
+RunResult run(const std::string& arguments) { return rbla::testing::run_rbla(arguments); }
 
 class Cli : public ::testing::Test {
  protected:

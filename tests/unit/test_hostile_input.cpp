@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/cli_runner.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -299,23 +301,8 @@ TEST(HostileInputNotHostile, NonConvexTJunctionAndRepeatedVertexAreAccepted) {
 
 // ---- The program: exit code 2, the pointer in the message, no output file ---------------------
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;
-};
-
-RunResult run_rbla(const std::string& arguments) {
-  const std::string command = std::string(RBLA_BINARY) + " " + arguments + " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using rbla::testing::RunResult;
+using rbla::testing::run_rbla;
 
 class HostileCli : public ::testing::TestWithParam<Hostile> {
  protected:
