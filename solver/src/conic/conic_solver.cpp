@@ -539,8 +539,8 @@ Solution ConicSolver::Impl::solve() {
       double kappa_rhs = -tau * kappa - dtau_a * dkappa_a + sigma * mu;
       for (int k = 0; k < s.max_centrality_correctors && alpha < s.step_fraction; ++k) {
         const double alpha_trial = std::min(1.0, alpha + 0.3);
-        cones.mul_Winv(dx, scaled_dx);
-        cones.mul_W(dz, scaled_dz);
+        // scaled_dx = W⁻¹dx and scaled_dz = W dz are already there: the last max_step call was
+        // for the current direction (the corrector's, when one was just accepted).
         trial_s = lambda + alpha_trial * scaled_dx;
         trial_z = lambda + alpha_trial * scaled_dz;
         cones.jordan_product(trial_s, trial_z, trial_v);
