@@ -11,9 +11,9 @@ ConeSet::ConeSet(Eigen::Index num_nonneg, const std::vector<Eigen::Index>& soc_d
     cones_.push_back(std::make_unique<NonnegativeCone>(0, num_nonneg));
     offset = num_nonneg;
   }
-  for (Eigen::Index q : soc_dims) {
-    cones_.push_back(std::make_unique<SecondOrderCone>(offset, q));
-    offset += q;
+  if (!soc_dims.empty()) {
+    cones_.push_back(std::make_unique<SecondOrderCones>(offset, soc_dims));
+    offset += cones_.back()->dim();
   }
   dim_ = offset;
   for (const auto& cone : cones_) degree_ += cone->degree();

@@ -1,6 +1,7 @@
 // Identities of the cone operations (NT scaling, Jordan algebra, step to the boundary).
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "../../../solver/src/conic/cone.hpp"
@@ -23,7 +24,7 @@ TEST(ConicCones, SocNesterovToddScalingIdentities) {
   std::mt19937 rng(7);
   for (int q : {2, 3, 5}) {
     for (double margin : {1.0, 1e-3, 1e-6}) {
-      SecondOrderCone cone(0, q);
+      SecondOrderCones cone(0, {q});
       const Vec x = random_interior_soc(rng, q, margin);
       const Vec z = random_interior_soc(rng, q, 0.5);
       ASSERT_TRUE(cone.update_scaling(x, z));
@@ -61,12 +62,12 @@ TEST(ConicCones, SocMaxStepMatchesBisection) {
   std::normal_distribution<double> normal;
   for (int trial = 0; trial < 50; ++trial) {
     const int q = 2 + trial % 4;
-    SecondOrderCone cone(0, q);
+    SecondOrderCones cone(0, {q});
     const Vec v = random_interior_soc(rng, q, 0.3);
     Vec d(q);
     for (int i = 0; i < q; ++i) d[i] = normal(rng);
     const double step = cone.max_step(v, d);
-    auto inside = [&](double a) { return SecondOrderCone::jordan_norm(v + a * d) > 0; };
+    auto inside = [&](double a) { return SecondOrderCones::jordan_norm(v + a * d) > 0; };
     if (std::isinf(step)) {
       EXPECT_TRUE(inside(1e6));
       continue;
@@ -74,6 +75,73 @@ TEST(ConicCones, SocMaxStepMatchesBisection) {
     EXPECT_TRUE(inside(step * (1 - 1e-9)));
     EXPECT_FALSE(inside(step * (1 + 1e-6)));
   }
+}
+
+TEST(ConicCones, SocRunEqualsItsConesOneByOne) {
+  // A run of cones of mixed sizes stored flat gives, cone by cone, what each cone gives alone.
+  std::mt19937 rng(5);
+  const std::vector<Eigen::Index> dims{3, 2, 5, 3, 1, 4};
+  const Eigen::Index n = 18;
+  Vec x(n), z(n), a(n), b(n);
+  Eigen::Index start = 0;
+  for (Eigen::Index q : dims) {
+    x.segment(start, q) = random_interior_soc(rng, static_cast<int>(q), 0.3);
+    z.segment(start, q) = random_interior_soc(rng, static_cast<int>(q), 0.7);
+    a.segment(start, q) = random_interior_soc(rng, static_cast<int>(q), 0.2) - random_interior_soc(rng, static_cast<int>(q), 0.1);
+    b.segment(start, q) = random_interior_soc(rng, static_cast<int>(q), 0.4) - random_interior_soc(rng, static_cast<int>(q), 0.5);
+    start += q;
+  }
+  SecondOrderCones run(0, dims);
+  ASSERT_TRUE(run.update_scaling(x, z));
+  EXPECT_EQ(run.degree(), 6);
+  Vec lambda(n), w(n), winv(n), w2(n), product(n), divided(n), centred(n);
+  run.lambda(lambda);
+  run.mul_W(a, w);
+  run.mul_Winv(a, winv);
+  run.mul_W2(a, w2);
+  run.jordan_product(a, b, product);
+  run.lambda_divide(a, divided);
+  run.centrality_correction(product, 0.1, 2.0, centred);
+  std::vector<double> packed(9 + 4 + 25 + 9 + 1 + 16);  // Σ q²
+  ASSERT_EQ(run.pack_W2(packed.data()), packed.data() + packed.size());
+  std::vector<ScalingBlock> blocks;
+  run.append_scaling_blocks(blocks);
+  ASSERT_EQ(blocks.size(), dims.size());
+  double step = std::numeric_limits<double>::infinity();
+  double lambda_step = std::numeric_limits<double>::infinity();
+  start = 0;
+  std::size_t packed_at = 0;
+  for (std::size_t k = 0; k < dims.size(); ++k) {
+    const Eigen::Index q = dims[k];
+    EXPECT_EQ(blocks[k].first, start);
+    EXPECT_EQ(blocks[k].size, q);
+    SecondOrderCones one(0, {q});
+    ASSERT_TRUE(one.update_scaling(x.segment(start, q), z.segment(start, q)));
+    Vec expected(q);
+    one.lambda(expected);
+    EXPECT_EQ(lambda.segment(start, q), expected);
+    one.mul_W(a.segment(start, q), expected);
+    EXPECT_EQ(w.segment(start, q), expected);
+    one.mul_Winv(a.segment(start, q), expected);
+    EXPECT_EQ(winv.segment(start, q), expected);
+    one.mul_W2(a.segment(start, q), expected);
+    EXPECT_EQ(w2.segment(start, q), expected);
+    one.jordan_product(a.segment(start, q), b.segment(start, q), expected);
+    EXPECT_EQ(product.segment(start, q), expected);
+    one.lambda_divide(a.segment(start, q), expected);
+    EXPECT_EQ(divided.segment(start, q), expected);
+    one.centrality_correction(product.segment(start, q), 0.1, 2.0, expected);
+    EXPECT_EQ(centred.segment(start, q), expected);
+    std::vector<double> one_packed(static_cast<std::size_t>(q * q));
+    one.pack_W2(one_packed.data());
+    for (std::size_t i = 0; i < one_packed.size(); ++i) EXPECT_EQ(packed[packed_at + i], one_packed[i]);
+    packed_at += one_packed.size();
+    step = std::min(step, one.max_step(x.segment(start, q), a.segment(start, q)));
+    lambda_step = std::min(lambda_step, one.max_step_from_lambda(a.segment(start, q)));
+    start += q;
+  }
+  EXPECT_EQ(run.max_step(x, a), step);
+  EXPECT_EQ(run.max_step_from_lambda(a), lambda_step);
 }
 
 TEST(ConicCones, NonnegativeScalingAndStep) {
