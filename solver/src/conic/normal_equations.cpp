@@ -210,33 +210,34 @@ void NormalEquations::solve_regularised(const Eigen::VectorXd& rhs, Eigen::Vecto
 }
 
 void NormalEquations::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
-  // M v = Σ_k A_k (W²_k (A_kᵀ v)) with plain loops: blocks are tiny (q = 1 or 3 typically).
-  // Called once per CG step: the work vectors are sized once, not per block.
+  // M v from the lower triangle assembled for the last factorisation (exact M_s, the shift δ is
+  // CHOLMOD's), plus A_k (W²_k (A_kᵀ v)) for the dense columns kept out of it. Called once per CG
+  // step. Per block through A_k instead, this was 10 % of an 8051-block 3-D solve: every block
+  // re-gathers the rows it touches, M's lower triangle visits each entry once.
   ++num_multiplies_;
   out.setZero(m_);
-  std::size_t max_q = 1;
-  for (const BlockData& bd : blocks_) max_q = std::max(max_q, static_cast<std::size_t>(bd.size));
-  std::vector<double> u(max_q), w(max_q);
-  for (const BlockData& bd : blocks_) {
+  const int* col_ptr = col_ptr_.data();
+  const int* row_ind = row_ind_.data();
+  const double* values = values_.data();
+  for (Eigen::Index j = 0; j < m_; ++j) {
+    const int begin = col_ptr[j], end = col_ptr[j + 1];
+    const double vj = v[j];
+    double sum = values[begin] * vj;  // the diagonal comes first in each column
+    for (int p = begin + 1; p < end; ++p) {
+      const int i = row_ind[p];
+      sum += values[p] * v[i];
+      out[i] += values[p] * vj;
+    }
+    out[j] += sum;
+  }
+  for (int index : dense_blocks_) {
+    const BlockData& bd = blocks_[static_cast<std::size_t>(index)];
     const std::size_t r = bd.rows.size();
-    const std::size_t q = static_cast<std::size_t>(bd.size);
-    const double* Ak = local_A_.data() + bd.a_offset;  // column-major r×q
-    const double* W2 = packed_W2_.data() + bd.w2_offset;
-    for (std::size_t j = 0; j < q; ++j) {
-      double sum = 0;
-      for (std::size_t a = 0; a < r; ++a) sum += Ak[a + r * j] * v[bd.rows[a]];
-      u[j] = sum;
-    }
-    for (std::size_t j = 0; j < q; ++j) {
-      double sum = 0;
-      for (std::size_t i = 0; i < q; ++i) sum += W2[j + q * i] * u[i];
-      w[j] = sum;
-    }
-    for (std::size_t a = 0; a < r; ++a) {
-      double sum = 0;
-      for (std::size_t j = 0; j < q; ++j) sum += Ak[a + r * j] * w[j];
-      out[bd.rows[a]] += sum;
-    }
+    const double* Ak = local_A_.data() + bd.a_offset;  // r × 1
+    double u = 0;
+    for (std::size_t a = 0; a < r; ++a) u += Ak[a] * v[bd.rows[a]];
+    u *= packed_W2_[bd.w2_offset];
+    for (std::size_t a = 0; a < r; ++a) out[bd.rows[a]] += Ak[a] * u;
   }
 }
 
