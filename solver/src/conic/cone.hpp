@@ -43,6 +43,9 @@ class Cone {
   virtual void lambda_divide(ConstVecRef d, VecRef out) const = 0;
   /// Largest α ≥ 0 with v + α dv ∈ K for interior v (+inf if unbounded).
   virtual double max_step(ConstVecRef v, ConstVecRef dv) const = 0;
+  /// Smallest eigenvalue of v over this cone's factors (v_i for R_+, v₀ − ‖v₁‖ for an SOC):
+  /// v + t e is interior exactly when t > −min_eigenvalue(v).
+  virtual double min_eigenvalue(ConstVecRef v) const = 0;
   /// max_step(λ, dv) for the λ of the last update_scaling, with what depends on λ alone cached
   /// (the solver asks this several times per iteration for every cone).
   virtual double max_step_from_lambda(ConstVecRef dv) const = 0;
@@ -80,6 +83,7 @@ class NonnegativeCone final : public Cone {
   void jordan_product(ConstVecRef a, ConstVecRef b, VecRef out) const override;
   void lambda_divide(ConstVecRef d, VecRef out) const override;
   double max_step(ConstVecRef v, ConstVecRef dv) const override;
+  double min_eigenvalue(ConstVecRef v) const override { return v.minCoeff(); }
   double max_step_from_lambda(ConstVecRef dv) const override { return max_step(lambda_, dv); }
   void centrality_correction(ConstVecRef v, double lo, double hi, VecRef out) const override;
   void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
@@ -113,6 +117,7 @@ class SecondOrderCones final : public Cone {
   void jordan_product(ConstVecRef a, ConstVecRef b, VecRef out) const override;
   void lambda_divide(ConstVecRef d, VecRef out) const override;
   double max_step(ConstVecRef v, ConstVecRef dv) const override;
+  double min_eigenvalue(ConstVecRef v) const override;
   double max_step_from_lambda(ConstVecRef dv) const override;
   void centrality_correction(ConstVecRef v, double lo, double hi, VecRef out) const override;
   void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
@@ -152,6 +157,7 @@ class ConeSet {
   void jordan_product(const Vec& a, const Vec& b, Vec& out) const;
   void lambda_divide(const Vec& d, Vec& out) const;
   double max_step(const Vec& v, const Vec& dv) const;
+  double min_eigenvalue(const Vec& v) const;
   double max_step_from_lambda(const Vec& dv) const;
   void centrality_correction(const Vec& v, double lo, double hi, Vec& out) const;
   std::vector<ScalingBlock> scaling_blocks() const;

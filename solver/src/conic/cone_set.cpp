@@ -75,6 +75,12 @@ void ConeSet::centrality_correction(const Vec& v, double lo, double hi, Vec& out
   }
 }
 
+double ConeSet::min_eigenvalue(const Vec& v) const {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const auto& k : cones_) smallest = std::min(smallest, k->min_eigenvalue(v.segment(k->offset(), k->dim())));
+  return smallest;
+}
+
 double ConeSet::max_step_from_lambda(const Vec& dv) const {
   double step = std::numeric_limits<double>::infinity();
   for (const auto& k : cones_) {

@@ -214,7 +214,9 @@ struct ConicSolver::Impl {
     return r;
   }
 
-  Solution solve();
+  Solution solve(bool allow_least_squares_start);
+  void least_squares_start(detail::NormalEquations* ne, int factor_threads, const Vec& e, Vec& x,
+                           Vec& y, Vec& z, Info& info);
 
   // The warm-start blend (see ConicSolver::set_warm_start) in the scaled variables, with τ = 1:
   // x = col_scale ∘ x̂ / b_scale etc. inverted (see evaluate()). False if not usable.
@@ -263,7 +265,45 @@ void print_row(std::ostream& out, const IterationRow& r) {
 
 }  // namespace
 
-Solution ConicSolver::Impl::solve() {
+// Least-squares starting point (CVXOPT conelp's default, also ECOS's): x̂ = argmin ‖x‖ s.t.
+// A x = b and (ŷ, ẑ) = argmin ‖z‖ s.t. Aᵀy + z = c, both through M = A Aᵀ (the normal matrix
+// at W = I: one extra factorisation), each shifted into the cone along e by one plus its most
+// negative eigenvalue when it is not interior already. Measured against x = z = e on the façade
+// problems: settlement 21 → 15 iterations (planar LP and 3-D), seismic 31 → 30 (LP) and
+// 31 → 28 (3-D); a 400-block 3-D wall 19 → 18; the small wall-with-opening sample 16 → 19.
+void ConicSolver::Impl::least_squares_start(detail::NormalEquations* ne, int factor_threads,
+                                            const Vec& e, Vec& x, Vec& y, Vec& z, Info& info) {
+  const Settings& s = settings;
+  std::fill(packed_W2.begin(), packed_W2.end(), 0.0);
+  std::size_t at = 0;
+  for (const auto& block : blocks) {
+    for (Eigen::Index i = 0; i < block.size; ++i)
+      packed_W2[at + static_cast<std::size_t>(i * block.size + i)] = 1.0;
+    at += static_cast<std::size_t>(block.size * block.size);
+  }
+  const detail::FactorReport report =
+      ne->factor(packed_W2, s.reg_static, s.reg_retry_factor, s.reg_max_retries, factor_threads);
+  info.assembly_seconds += report.assembly_seconds;
+  info.factor_seconds += report.factor_seconds;
+  info.num_refactor_retries += report.retries;
+  if (!report.ok) return;  // keep x = z = e
+  Vec w, y_hat;
+  const Vec Ac = A * c;
+  ne->solve(b, w, s.refine_max_iter, s.refine_tol_rel * (1.0 + inf_norm(b)));
+  const Vec x_hat = A.transpose() * w;
+  ne->solve(Ac, y_hat, s.refine_max_iter, s.refine_tol_rel * (1.0 + inf_norm(Ac)));
+  const Vec z_hat = c - A.transpose() * y_hat;
+  const double shift_x = -cones.min_eigenvalue(x_hat);
+  const double shift_z = -cones.min_eigenvalue(z_hat);
+  if (!std::isfinite(shift_x) || !std::isfinite(shift_z) || !x_hat.allFinite() ||
+      !z_hat.allFinite() || !y_hat.allFinite())
+    return;
+  x = shift_x < 0 ? x_hat : Vec(x_hat + (1.0 + shift_x) * e);
+  z = shift_z < 0 ? z_hat : Vec(z_hat + (1.0 + shift_z) * e);
+  y = y_hat;
+}
+
+Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
   const auto start = Clock::now();
   {
     const auto messages = settings.validate();
@@ -308,6 +348,10 @@ Solution ConicSolver::Impl::solve() {
   }
 
   detail::NormalEquations* ne = normal.get();
+  if (!info.warm_started && s.least_squares_start && allow_least_squares_start) {
+    least_squares_start(ne, factor_threads, e, x, y, z, info);
+    info.least_squares_start = true;
+  }
   Vec rp, rd, lambda, W2c, Atq_c, dxq, q, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
   Vec dx_a, dy_a, dz_a, dx, dy, dz, scaled_dx, scaled_dz, lambda_sq, corr, ep, dp, ddx;
   Vec trial_s, trial_z, trial_v, ds_c, cdx, cdy, cdz;
@@ -703,7 +747,35 @@ ConicSolver::~ConicSolver() = default;
 ConicSolver::ConicSolver(ConicSolver&&) noexcept = default;
 ConicSolver& ConicSolver::operator=(ConicSolver&&) noexcept = default;
 
-Solution ConicSolver::solve() { return impl_->solve(); }
+Solution ConicSolver::solve() {
+  Solution solution = impl_->solve(true);
+  // The least-squares start can sit badly with extreme data (unit weights 1e6 apart: the first
+  // step stalled; a random SOCP stalled at iteration 10 and was only "solved inaccurate"). A solve
+  // from it that ended in a numerical failure, or was rescued from one by the reduced tolerances,
+  // is repeated once from x = z = e, and the better outcome is returned.
+  Settings& s = impl_->settings;
+  const SolveStatus status = solution.info.status;
+  const bool numerical_trouble =
+      status == SolveStatus::NumericalFailure ||
+      (status == SolveStatus::SolvedInaccurate && !solution.info.failure_reason.empty());
+  const double spent = solution.info.total_seconds;
+  if (!solution.info.least_squares_start || !numerical_trouble || !(spent < s.time_limit_seconds))
+    return solution;
+  if (s.verbose)
+    *(s.log_stream ? s.log_stream : &std::cout)
+        << "      numerical trouble from the least-squares start; solving again from x = z = e\n";
+  const double time_limit = s.time_limit_seconds;
+  s.time_limit_seconds = time_limit - spent;
+  Solution again = impl_->solve(false);
+  s.time_limit_seconds = time_limit;
+  const bool better = again.info.status == SolveStatus::Solved ||
+                      (again.info.status == SolveStatus::SolvedInaccurate &&
+                       status == SolveStatus::NumericalFailure);
+  Solution& kept = better ? again : solution;
+  kept.info.total_seconds = spent + again.info.total_seconds;
+  kept.info.restarted = true;
+  return std::move(kept);
+}
 
 void ConicSolver::update_b(const Eigen::VectorXd& b) {
   if (b.size() != impl_->problem.b.size()) throw ConicSetupError("update_b: wrong length");

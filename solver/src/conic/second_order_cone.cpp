@@ -169,6 +169,17 @@ double SecondOrderCones::max_step(ConstVecRef v, ConstVecRef dv) const {
   return step;
 }
 
+double SecondOrderCones::min_eigenvalue(ConstVecRef v) const {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < dims_.size(); ++k) {
+    const double* vk = v.data() + starts_[k];
+    double tail_sq = 0.0;
+    for (int i = 1; i < dims_[k]; ++i) tail_sq += vk[i] * vk[i];
+    smallest = std::min(smallest, vk[0] - std::sqrt(tail_sq));
+  }
+  return smallest;
+}
+
 double SecondOrderCones::max_step_from_lambda(ConstVecRef dv) const {
   double step = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < dims_.size(); ++k) {

@@ -65,6 +65,10 @@ struct Info {
   int num_refactor_retries = 0;  ///< factorisations repeated with larger regularisation
   double factor_bytes = 0;      ///< memory of the Cholesky factor (from the symbolic analysis)
   bool warm_started = false;                   ///< started from set_warm_start's point
+  bool least_squares_start = false;  ///< started from Settings::least_squares_start's point
+  /// The solve from the least-squares start ran into numerical trouble and was repeated from
+  /// x = z = e; the other fields describe the better of the two solves, total_seconds both.
+  bool restarted = false;
   int num_centrality_correctors = 0;           ///< Gondzio correctors tried (extra solves)
   int num_centrality_correctors_accepted = 0;  ///< of which kept
   int num_dense_columns = 0;     ///< columns handled outside the sparse factor
