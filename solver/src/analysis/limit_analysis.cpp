@@ -49,6 +49,10 @@ const char* to_string(InterfaceState state) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+/// Non-associative steps whose alpha moved by less than this many times the scheme's tolerance
+/// are solved at the requested tolerances (they are likely to be the last step).
+constexpr double kTightStepFactor = 30.0;
+
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string format(double value, int precision = 6) {
@@ -480,6 +484,11 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
           break;
         }
         step_tol = step_tolerance(std::abs(value - previous) / scale);
+        // Near convergence, solve at the requested tolerances at once: a tight solve costs a few
+        // more interior-point iterations than a loose one (façade: 22-24 against 17-20), while a
+        // loose step that passes the test is solved again from the start (22 more). The radii and
+        // so the path of the scheme are unchanged.
+        if (step_change <= kTightStepFactor * request.non_associative_tolerance * scale) step_tol = request.tol_relative_gap;
         // Adaptive damping: when alpha turns back (the iteration overshoots), halve the weight of
         // the new radii, down to an eighth of the requested damping. A floor at one half left
         // period-4 cycles (a 1:1000 column, a block 1e6 lighter than the one below it); the
