@@ -8,6 +8,32 @@
 #include "rbla/conic/problem.hpp"
 
 namespace rbla::conic::detail {
+namespace {
+// Set by SerialOpenMp (below) around CHOLMOD's numeric factorisation.
+thread_local bool openmp_regions_inline = false;
+}  // namespace
+}  // namespace rbla::conic::detail
+
+/// libgomp's entry for `#pragma omp parallel` (GCC ≥ 4.9 ABI), interposed: CHOLMOD, linked to
+/// this program, calls this definition rather than libgomp's. Inside a SerialOpenMp scope the
+/// region's body runs on the calling thread, as an orphaned region (omp_get_num_threads() = 1,
+/// work-sharing constructs without a team are valid, OpenMP 5.2 §2.8); elsewhere it goes to
+/// libgomp's own GOMP_parallel unchanged.
+extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads, unsigned flags) {
+  if (rbla::conic::detail::openmp_regions_inline) {
+    fn(data);
+    return;
+  }
+  using Parallel = void (*)(void (*)(void*), void*, unsigned, unsigned);
+  static const auto real = reinterpret_cast<Parallel>(dlsym(RTLD_NEXT, "GOMP_parallel"));
+  if (real) {
+    real(fn, data, num_threads, flags);
+  } else {
+    fn(data);
+  }
+}
+
+namespace rbla::conic::detail {
 
 namespace {
 // Looked up at run time: libblas.so.3 is a Debian alternative (OpenBLAS, reference BLAS, BLIS...).
@@ -38,16 +64,20 @@ GetLevelsFn omp_get_levels() {
 /// loops inside every supernode's update (cholmod_core.h), whatever OMP_NUM_THREADS says; on two
 /// cores, with OpenBLAS's threads next to them, the team's hand-overs cost more than the loops.
 /// Seismic 3-D façade problem (1920 blocks, 29 factorisations): 1.60 s of factorisation with
-/// the team, 0.72 s without; sys time 3.2 → 2.1 s. max-active-levels = 0 makes every region
-/// inactive (one thread) and is restored afterwards.
+/// the team, 0.72 s without. Even a one-thread region costs libgomp a futex system call (its
+/// closing barrier wakes waiters unconditionally), tens of thousands per solve: the regions are
+/// run inline instead (GOMP_parallel below), and max-active-levels = 0 makes them one-thread
+/// regions where that interposition is not in effect.
 class SerialOpenMp {
  public:
   SerialOpenMp() {
+    openmp_regions_inline = true;
     if (!omp_set_levels() || !omp_get_levels()) return;
     previous_ = omp_get_levels()();
     omp_set_levels()(0);
   }
   ~SerialOpenMp() {
+    openmp_regions_inline = false;
     if (previous_ >= 0) omp_set_levels()(previous_);
   }
   SerialOpenMp(const SerialOpenMp&) = delete;
