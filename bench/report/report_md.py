@@ -182,15 +182,19 @@ def write(results, out):
             for ln in lines:
                 L.append("- `%s`: %s" % (load, ln.replace("church: ", "")))
         L.append("")
-        L.append("Run time budget: the church runs in the 3-D formulation for %s only (seismic y "
-                 "needs it; the others are in-plane loads, whose planar LP is the primary "
-                 "formulation); a reduced method set in 3-D for %s; no 3-D non-associative runs. "
-                 "The samples run every method in both formulations." % (
-                     ", ".join(plan.get("church_3d_loads", [])) or "-",
-                     "; ".join("%s (tolerances %s, pyramids of %s faces)" % (
-                         k, ", ".join("%g" % t for t in v[0]), ", ".join(str(f) for f in v[1]))
-                         for k, v in sorted(plan.get("church_3d_light", {}).items())
-                         if k in plan.get("church_3d_loads", [])) or "-"))
+        loads_3d = plan.get("church_3d_loads", [])
+        light = ["%s (tolerances %s, pyramids of %s faces)" % (
+            k, ", ".join("%g" % t for t in v[0]), ", ".join(str(f) for f in v[1]))
+            for k, v in sorted(plan.get("church_3d_light", {}).items()) if k in loads_3d]
+        na_3d = [k for k in plan.get("non_associative_3d_church", []) if k in loads_3d]
+        L.append("Method set: the church runs in the 3-D formulation for %s (seismic y needs it; "
+                 "the in-plane loads also have the planar LP, their primary formulation); %s; "
+                 "3-D non-associative runs for %s. The samples run every method in both "
+                 "formulations." % (
+                     ", ".join(loads_3d) or "no load",
+                     "a reduced 3-D method set for " + "; ".join(light) if light
+                     else "every method in 3-D as in the planar formulation",
+                     ", ".join(na_3d) or "no load"))
         L.append("")
         L.append("rbla at its default tolerance (1e-8). Ratios are the peer's solve time over rbla's "
                  "(> 1: rbla faster).")
