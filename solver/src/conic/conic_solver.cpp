@@ -215,7 +215,8 @@ struct ConicSolver::Impl {
   }
 
   Solution solve(bool allow_least_squares_start);
-  void least_squares_start(detail::NormalEquations* ne, int factor_threads, const Vec& e, Vec& x,
+  /// False (x, y, z untouched) when the point could not be computed.
+  bool least_squares_start(detail::NormalEquations* ne, int factor_threads, const Vec& e, Vec& x,
                            Vec& y, Vec& z, Info& info);
 
   // The warm-start blend (see ConicSolver::set_warm_start) in the scaled variables, with τ = 1:
@@ -271,7 +272,7 @@ void print_row(std::ostream& out, const IterationRow& r) {
 // negative eigenvalue when it is not interior already. Measured against x = z = e on the façade
 // problems: settlement 21 → 15 iterations (planar LP and 3-D), seismic 31 → 30 (LP) and
 // 31 → 28 (3-D); a 400-block 3-D wall 19 → 18; the small wall-with-opening sample 16 → 19.
-void ConicSolver::Impl::least_squares_start(detail::NormalEquations* ne, int factor_threads,
+bool ConicSolver::Impl::least_squares_start(detail::NormalEquations* ne, int factor_threads,
                                             const Vec& e, Vec& x, Vec& y, Vec& z, Info& info) {
   const Settings& s = settings;
   std::fill(packed_W2.begin(), packed_W2.end(), 0.0);
@@ -286,7 +287,7 @@ void ConicSolver::Impl::least_squares_start(detail::NormalEquations* ne, int fac
   info.assembly_seconds += report.assembly_seconds;
   info.factor_seconds += report.factor_seconds;
   info.num_refactor_retries += report.retries;
-  if (!report.ok) return;  // keep x = z = e
+  if (!report.ok) return false;
   Vec w, y_hat;
   const Vec Ac = A * c;
   ne->solve(b, w, s.refine_max_iter, s.refine_tol_rel * (1.0 + inf_norm(b)));
@@ -297,10 +298,11 @@ void ConicSolver::Impl::least_squares_start(detail::NormalEquations* ne, int fac
   const double shift_z = -cones.min_eigenvalue(z_hat);
   if (!std::isfinite(shift_x) || !std::isfinite(shift_z) || !x_hat.allFinite() ||
       !z_hat.allFinite() || !y_hat.allFinite())
-    return;
+    return false;
   x = shift_x < 0 ? x_hat : Vec(x_hat + (1.0 + shift_x) * e);
   z = shift_z < 0 ? z_hat : Vec(z_hat + (1.0 + shift_z) * e);
   y = y_hat;
+  return true;
 }
 
 Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
@@ -348,10 +350,8 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
   }
 
   detail::NormalEquations* ne = normal.get();
-  if (!info.warm_started && s.least_squares_start && allow_least_squares_start) {
-    least_squares_start(ne, factor_threads, e, x, y, z, info);
-    info.least_squares_start = true;
-  }
+  if (!info.warm_started && s.least_squares_start && allow_least_squares_start)
+    info.least_squares_start = least_squares_start(ne, factor_threads, e, x, y, z, info);
   Vec rp, rd, lambda, W2c, Atq_c, dxq, q, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
   Vec dx_a, dy_a, dz_a, dx, dy, dz, scaled_dx, scaled_dz, lambda_sq, corr, ep, dp, ddx;
   Vec trial_s, trial_z, trial_v, ds_c, cdx, cdy, cdz;

@@ -36,28 +36,19 @@ extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_thread
 namespace rbla::conic::detail {
 
 namespace {
-// Looked up at run time: libblas.so.3 is a Debian alternative (OpenBLAS, reference BLAS, BLIS...).
-using SetThreadsFn = void (*)(int);
-using GetThreadsFn = int (*)();
-SetThreadsFn openblas_set_threads() {
-  static const auto fn = reinterpret_cast<SetThreadsFn>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  return fn;
+// Looked up at run time, so that any BLAS and any CHOLMOD build link: libblas.so.3 is a Debian
+// alternative (OpenBLAS, reference BLAS, BLIS...), libgomp comes in through CHOLMOD. A symbol
+// that is not there leaves that setting alone.
+using SetCountFn = void (*)(int);
+using GetCountFn = int (*)();
+template <class Fn>
+Fn find_symbol(const char* name) {
+  return reinterpret_cast<Fn>(dlsym(RTLD_DEFAULT, name));
 }
-GetThreadsFn openblas_get_threads() {
-  static const auto fn = reinterpret_cast<GetThreadsFn>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  return fn;
-}
-// OpenMP's max-active-levels (libgomp, linked in by CHOLMOD), also looked up at run time.
-using SetLevelsFn = void (*)(int);
-using GetLevelsFn = int (*)();
-SetLevelsFn omp_set_levels() {
-  static const auto fn = reinterpret_cast<SetLevelsFn>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
-  return fn;
-}
-GetLevelsFn omp_get_levels() {
-  static const auto fn = reinterpret_cast<GetLevelsFn>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
-  return fn;
-}
+const SetCountFn openblas_set_threads = find_symbol<SetCountFn>("openblas_set_num_threads");
+const GetCountFn openblas_get_threads = find_symbol<GetCountFn>("openblas_get_num_threads");
+const SetCountFn omp_set_levels = find_symbol<SetCountFn>("omp_set_max_active_levels");
+const GetCountFn omp_get_levels = find_symbol<GetCountFn>("omp_get_max_active_levels");
 
 /// Runs CHOLMOD's OpenMP regions on the calling thread alone for its lifetime. CHOLMOD 3 (Debian
 /// 12) opens a parallel region with a compiled-in team of CHOLMOD_OMP_NUM_THREADS = 4 for small
@@ -66,19 +57,19 @@ GetLevelsFn omp_get_levels() {
 /// Seismic 3-D façade problem (1920 blocks, 29 factorisations): 1.60 s of factorisation with
 /// the team, 0.72 s without. Even a one-thread region costs libgomp a futex system call (its
 /// closing barrier wakes waiters unconditionally), tens of thousands per solve: the regions are
-/// run inline instead (GOMP_parallel below), and max-active-levels = 0 makes them one-thread
+/// run inline instead (GOMP_parallel above), and max-active-levels = 0 makes them one-thread
 /// regions where that interposition is not in effect.
 class SerialOpenMp {
  public:
   SerialOpenMp() {
     openmp_regions_inline = true;
-    if (!omp_set_levels() || !omp_get_levels()) return;
-    previous_ = omp_get_levels()();
-    omp_set_levels()(0);
+    if (!omp_set_levels || !omp_get_levels) return;
+    previous_ = omp_get_levels();
+    omp_set_levels(0);
   }
   ~SerialOpenMp() {
     openmp_regions_inline = false;
-    if (previous_ >= 0) omp_set_levels()(previous_);
+    if (previous_ >= 0) omp_set_levels(previous_);
   }
   SerialOpenMp(const SerialOpenMp&) = delete;
   SerialOpenMp& operator=(const SerialOpenMp&) = delete;
@@ -88,16 +79,16 @@ class SerialOpenMp {
 };
 }  // namespace
 
-int current_blas_threads() { return openblas_get_threads() ? openblas_get_threads()() : 0; }
+int current_blas_threads() { return openblas_get_threads ? openblas_get_threads() : 0; }
 
 BlasThreads::BlasThreads(int threads) {
-  if (threads <= 0 || !openblas_set_threads() || !openblas_get_threads()) return;
-  previous_ = openblas_get_threads()();
-  openblas_set_threads()(threads);
+  if (threads <= 0 || !openblas_set_threads || !openblas_get_threads) return;
+  previous_ = openblas_get_threads();
+  openblas_set_threads(threads);
 }
 
 BlasThreads::~BlasThreads() {
-  if (previous_ > 0) openblas_set_threads()(previous_);
+  if (previous_ > 0) openblas_set_threads(previous_);
 }
 
 struct SparseCholesky::Impl {
