@@ -131,7 +131,7 @@ def write(results, out):
              "reading, detection and assembly; the whole process's wall time is in the tables too). "
              "CLP: the process's wall time minus the MPS import time CLP reports. CVXOPT: the "
              "`conelp` call, timed in the child (reading the CBF in Python excluded). **Peak "
-             "memory**: the child's maximum resident set size.")
+             "memory**: the child's maximum resident set size, as `/usr/bin/time` reports it (%M).")
     if any(not r.get("peak_rss_source") for e in results.get("scenes", []) for r in e["runs"]
            if r.get("peak_rss_kib")):
         L.append("- **Peak memory in this run is an upper bound (shown as &le; N MiB).** It was "

@@ -158,7 +158,9 @@ def run_child(cmd, cap, cwd=None):
             peak = int(tfile.read().strip().splitlines()[-1])
         except (ValueError, IndexError):
             peak = None  # killed, or time could not write
-        return {"wall_seconds": wall, "peak_rss_kib": peak, "exit_code": proc.returncode,
+        return {"wall_seconds": wall, "peak_rss_kib": peak,
+                "peak_rss_source": "/usr/bin/time %M" if peak is not None else None,
+                "exit_code": proc.returncode,
                 "timed_out": timed_out, "stdout": out.read().decode("utf-8", "replace"),
                 "stderr": err.read().decode("utf-8", "replace")}
 
@@ -180,7 +182,7 @@ def repeated(fn, cap):
                 rec[key + "_all"] = vals
         peaks = [r["peak_rss_kib"] for r in ok_runs if r.get("peak_rss_kib") is not None]
         rec["peak_rss_kib"] = max(peaks) if peaks else None
-        rec["peak_rss_source"] = "/usr/bin/time %M"
+        rec["peak_rss_source"] = "/usr/bin/time %M" if peaks else None
     rec["repeats"] = len(runs)
     return rec
 
@@ -211,6 +213,7 @@ def run_rbla(rbla, model, analysis_patch, workdir, tag, cap, dump=None):
         cmd += ["--dump-problem", dump]
     r = run_child(cmd, cap)
     rec = {"wall_seconds": r["wall_seconds"], "peak_rss_kib": r["peak_rss_kib"],
+           "peak_rss_source": r["peak_rss_source"],
            "exit_code": r["exit_code"], "timed_out": r["timed_out"], "ok": False,
            "analysis": m["analysis"], "wrote_dump": bool(dump)}
     if r["timed_out"]:
@@ -276,6 +279,7 @@ def run_clp(mps, crossover, cap, args=None):
                           ([] if crossover else ["-crossover", "off"]) + ["-barrier"])
     r = run_child(cmd, cap)
     rec = {"wall_seconds": r["wall_seconds"], "peak_rss_kib": r["peak_rss_kib"],
+           "peak_rss_source": r["peak_rss_source"],
            "exit_code": r["exit_code"], "timed_out": r["timed_out"], "ok": False}
     if r["timed_out"]:
         rec["outcome"] = "did not finish within %.0f s (killed)" % cap
@@ -305,6 +309,7 @@ def run_cvxopt(python, cbf, tol, cap):
     cmd = [python, os.path.join(HERE, "cvxopt_cbf.py"), cbf, "--tol", repr(tol)]
     r = run_child(cmd, cap)
     rec = {"wall_seconds": r["wall_seconds"], "peak_rss_kib": r["peak_rss_kib"],
+           "peak_rss_source": r["peak_rss_source"],
            "exit_code": r["exit_code"], "timed_out": r["timed_out"], "ok": False, "tol": tol}
     if r["timed_out"]:
         rec["outcome"] = "did not finish within %.0f s (killed)" % cap
