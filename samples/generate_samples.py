@@ -468,6 +468,21 @@ def _base_split(L, m, fraction, gap):
     return (-m, xs - gap / 2.0), (xs + gap / 2.0, L + m)
 
 
+def _add_base(blocks, L, m, t, bt, fraction, gap, scene):
+    """Base blocks under a wall of length L: one fixed block, or (fraction given) a fixed block
+    and a moving support under the right part. Returns the x ranges of the base blocks."""
+    if fraction is None:
+        blocks.append(make_block("base", *box(-m, L + m, -m, bt + m, -t, 0.0), role="fixed"))
+        return [(-m, L + m)]
+    if not 0.0 < fraction < 1.0:
+        raise SystemExit("%s: --settling-fraction must be in (0, 1)" % scene)
+    (fa, fb), (ma, mb) = _base_split(L, m, fraction, gap)
+    blocks.append(make_block("base_fixed", *box(fa, fb, -m, bt + m, -t, 0.0), role="fixed"))
+    blocks.append(make_block("base_moving", *box(ma, mb, -m, bt + m, -t, 0.0),
+                             role="moving_support"))
+    return [(fa, fb), (ma, mb)]
+
+
 def scene_wall_settlement(args):
     nc, nb = args.courses, args.blocks
     bl, bt, hb = args.block_length, args.block_thickness, args.block_height
@@ -500,20 +515,12 @@ def scene_facade(args):
     what = "fixed base"
     model = model_skeleton("", args)
     blocks = model["blocks"]
-    if args.settling_fraction is not None:
-        f = args.settling_fraction
-        if not 0.0 < f < 1.0:
-            raise SystemExit("facade: --settling-fraction must be in (0, 1)")
-        (fa, fb), (ma, mb) = _base_split(L, m, f, args.support_gap)
-        blocks.append(make_block("base_fixed", *box(fa, fb, -m, bt + m, -t, 0.0), role="fixed"))
-        blocks.append(make_block("base_moving", *box(ma, mb, -m, bt + m, -t, 0.0),
-                                 role="moving_support"))
-        base_segs = [(fa, fb), (ma, mb)]
+    f = args.settling_fraction
+    base_segs = _add_base(blocks, L, m, t, bt, f, args.support_gap, "facade")
+    if f is not None:
         what = "fixed base and a moving support under the right %g %%; settlement" % (100 * f)
         model["analysis"] = {"type": "settlement"}
     else:
-        blocks.append(make_block("base", *box(-m, L + m, -m, bt + m, -t, 0.0), role="fixed"))
-        base_segs = [(-m, L + m)]
         direction = [0, 1, 0] if args.seismic == "y" else [1, 0, 0]
         what = "fixed base; seismic +%s" % (args.seismic or "x")
         model["analysis"] = seismic_analysis(direction)
@@ -863,18 +870,12 @@ def scene_church(args):
     m, t = args.base_margin, args.base_thickness
     model = model_skeleton("", args)
     blocks = model["blocks"]
-    if args.load == "settlement":
-        f = args.settling_fraction
-        if not 0.0 < f < 1.0:
-            raise SystemExit("church: --settling-fraction must be in (0, 1)")
-        (fa, fb), (ma, mb) = _base_split(L, m, f, args.support_gap)
-        blocks.append(make_block("base_fixed", *box(fa, fb, -m, bt + m, -t, 0.0), role="fixed"))
-        blocks.append(make_block("base_moving", *box(ma, mb, -m, bt + m, -t, 0.0),
-                                 role="moving_support"))
+    f = args.settling_fraction if args.load == "settlement" else None
+    _add_base(blocks, L, m, t, bt, f, args.support_gap, "church")
+    if f is not None:
         what = "a fixed base and a moving support under the right %g %%; settlement" % (100 * f)
         model["analysis"] = {"type": "settlement"}
     else:
-        blocks.append(make_block("base", *box(-m, L + m, -m, bt + m, -t, 0.0), role="fixed"))
         axis = args.load[-1]
         what = "a fixed base; seismic +%s (%s)" % (axis, "in plane" if axis == "x" else "out of plane")
         model["analysis"] = seismic_analysis([1, 0, 0] if axis == "x" else [0, 1, 0])
