@@ -1,4 +1,4 @@
-"""Read an rbla result (schema/result.schema.json 1.0.0) and turn it into things to draw.
+"""Read an rbla result (schema/result.schema.json 1.1.0) and turn it into things to draw.
 
     from rbla_cad.result import load_result, block_transform, apply_transform
     res = load_result("result.json")

@@ -139,7 +139,7 @@ class ColourTest(unittest.TestCase):
 
 class ResultParseTest(unittest.TestCase):
     DOC = {
-        "schema_version": "1.0.0", "rbla_version": "0.1.0", "status": "collapse",
+        "schema_version": "1.1.0", "rbla_version": "0.1.0", "status": "collapse",
         "verdict": "Collapse at load multiplier alpha = 0.5.",
         "units": {"length": "m", "force": "kN"},
         "analysis": {"type": "load_multiplier", "friction_model": "associative",

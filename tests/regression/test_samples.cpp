@@ -76,6 +76,9 @@ TEST(Samples, HeadlineResultsMatchIndependentReferences) {
       const double value = reference["base_reaction"].get<double>();
       ASSERT_TRUE(result.base_reaction.has_value());
       EXPECT_NEAR(*result.base_reaction, value, 1e-6 * value);
+      const double initial = reference.at("initial_base_reaction").get<double>();
+      ASSERT_TRUE(result.initial_base_reaction.has_value());
+      EXPECT_NEAR(*result.initial_base_reaction, initial, 1e-9 * initial);
     }
     EXPECT_LT(result.work.relative_error, 1e-6);
     const nlohmann::json json = rbla::io::analysis_result_json(loaded.model, result, loaded.timings, name);

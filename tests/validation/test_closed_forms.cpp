@@ -183,6 +183,111 @@ TEST(ClosedForms, SettlementBaseReaction) {
   }
 }
 
+// The reaction before settlement (analysis/initial_reaction.hpp): the block as one rigid body on
+// uniformly elastic ground, so the base pressure is linear in x (Navier) and vanishes nowhere
+// inside the contact, or, when the resultant falls outside the kern, linear on the part still in
+// contact and zero at its edge (no tension). Same scene as SettlementBaseReaction: contact over
+// S = [0, a] U [a + g, L] (unit depth), the moving support under [a + g, L].
+//
+// With p(x) = beta (c - x) on S n [0, c] (c = L + anything: full contact, any beta, c), the
+// resultant N = integral of p and its position x_R = integral of p x / N fix beta and c:
+//   sum_S (c v - v^2/2 - c u + u^2/2) beta = N,   sum_S (c (v^2 - u^2)/2 - (v^3 - u^3)/3) beta = N x_R.
+// Full contact (x_R inside the kern): c is found from the second equation divided by the first,
+// which is linear in c; partial contact: the same ratio with the contact cut at c, solved by
+// bisection (the compressed side on the left; a resultant right of the base centroid is mirrored
+// first). R0 = integral over [a + g, min(c, L)] of p.
+namespace navier {
+struct Segment {
+  double u, v;
+};
+double f0(double c, Segment s) { return c * (s.v - s.u) - (s.v * s.v - s.u * s.u) / 2; }
+double f1(double c, Segment s) { return c * (s.v * s.v - s.u * s.u) / 2 - (s.v * s.v * s.v - s.u * s.u * s.u) / 3; }
+std::vector<Segment> cut(const std::vector<Segment>& contact, double c) {
+  std::vector<Segment> out;
+  for (const Segment& s : contact)
+    if (s.u < c) out.push_back({s.u, std::min(s.v, c)});
+  return out;
+}
+double resultant_position(const std::vector<Segment>& contact, double c) {
+  double m0 = 0, m1 = 0;
+  for (const Segment& s : contact) m0 += f0(c, s), m1 += f1(c, s);
+  return m1 / m0;
+}
+// R0 on the moving segment for a resultant N at x_R over the given contact segments.
+double initial_reaction(const std::vector<Segment>& contact, const Segment& moving, double N, double xR) {
+  const double L = contact.back().v;
+  double area = 0, first_moment = 0;
+  for (const Segment& s : contact) area += s.v - s.u, first_moment += (s.v * s.v - s.u * s.u) / 2;
+  if (xR > first_moment / area) {
+    // Resultant right of the base centroid: mirror x -> L - x, so the compressed side is the left.
+    std::vector<Segment> mirrored;
+    for (auto it = contact.rbegin(); it != contact.rend(); ++it) mirrored.push_back({L - it->v, L - it->u});
+    return initial_reaction(mirrored, {L - moving.v, L - moving.u}, N, L - xR);
+  }
+  double c;
+  // Full contact: p = beta (c - x) with any c beyond the base; the resultant position is then
+  // x_R = m1(c)/m0(c), linear-fractional in c: solve (m1 - xR m0)(c) = 0, linear in c.
+  double a0 = 0, a1 = 0;  // (m1 - xR m0) = a1 c + a0
+  for (const Segment& s : contact) {
+    a1 += (s.v * s.v - s.u * s.u) / 2 - xR * (s.v - s.u);
+    a0 += -(s.v * s.v * s.v - s.u * s.u * s.u) / 3 + xR * (s.v * s.v - s.u * s.u) / 2;
+  }
+  c = -a0 / a1;
+  if (!(c >= L) && !(c <= 0)) {
+    // The zero of the pressure falls inside the base: no tension, cut the contact at c.
+    double lo = xR, hi = L;
+    for (int k = 0; k < 200; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (resultant_position(cut(contact, mid), mid) < xR ? lo : hi) = mid;
+    }
+    c = 0.5 * (lo + hi);
+  }
+  const std::vector<Segment> active = (c >= L || c <= 0) ? contact : cut(contact, c);
+  double m0 = 0;
+  for (const Segment& s : active) m0 += f0(c, s);
+  const double beta = N / m0;
+  double r0 = 0;
+  for (const Segment& s : cut({moving}, (c >= L || c <= 0) ? L : c)) r0 += beta * f0(c, s);
+  return r0;
+}
+}  // namespace navier
+
+TEST(ClosedForms, InitialBaseReactionNavier) {
+  const double L = 4.0, h = 1.0, g = 1e-3, gamma = 18.0;
+  const double W = gamma * L * 1.0 * h;
+  struct LoadCase {
+    double a, P, xP;  // support edge; a dead point load P (kN, downward) at x = xP on the top face
+  };
+  // Self-weight alone (full contact); a load inside the kern; loads outside it (the base lifts on
+  // the right, and on the left).
+  for (const LoadCase& c : {LoadCase{1.0, 0.0, 0.0}, LoadCase{2.5, 0.0, 0.0}, LoadCase{1.5, 40.0, 2.8},
+                            LoadCase{1.0, 300.0, 0.2}, LoadCase{2.0, 300.0, 3.9}}) {
+    SCOPED_TRACE("a=" + std::to_string(c.a) + " P=" + std::to_string(c.P) + " xP=" + std::to_string(c.xP));
+    json blocks = json::array({box_block("fixed", -0.5, -0.5, -0.5, c.a, 1.5, 0.0, "fixed"),
+                               box_block("moving", c.a + g, -0.5, -0.5, L + 0.5, 1.5, 0.0, "moving_support"),
+                               box_block("B", 0.0, 0.0, 0.0, L, 1.0, h)});
+    json model = model_with(blocks);
+    model["defaults"] = {{"unit_weight", gamma}, {"friction", 0.6}};
+    if (c.P > 0)
+      model["loads"] = {{"dead", json::array({{{"block", "B"}, {"force", {0.0, 0.0, -c.P}}, {"point", {c.xP, 0.5, h}}}})}};
+    model["analysis"] = {{"type", "settlement"}};
+    const auto r = run(model);
+    ASSERT_EQ(r.verdict, Verdict::Collapse) << r.verdict_text;
+    ASSERT_TRUE(r.initial_base_reaction.has_value()) << r.verdict_text;
+    const double N = W + c.P, xR = (W * L / 2 + c.P * c.xP) / N;
+    const std::vector<navier::Segment> contact = {{0.0, c.a}, {c.a + g, L}};
+    const double expected = navier::initial_reaction(contact, {c.a + g, L}, N, xR);
+    EXPECT_LT(relative_error(*r.initial_base_reaction, expected), kClosedFormTol)
+        << "R0 " << *r.initial_base_reaction << " expected " << expected;
+    const bool lifts = std::abs(xR - L / 2) > L / 6 * 1.001;  // outside the kern of [0, L] (gap aside)
+    EXPECT_EQ(r.initial_base_lifts, lifts);
+    // The loss is measured from the rigid-body state: R at collapse is the smallest admissible
+    // reaction, so it never exceeds an admissible initial one (all these states are admissible:
+    // one block, no inner joints).
+    EXPECT_LE(*r.base_reaction, *r.initial_base_reaction * (1 + 1e-9));
+  }
+}
+
 // Least thickness of a semicircular arch with radial joints under self-weight.
 //
 // Reference: the continuous (infinitely many radial joints) solution of Milankovitch (1907),

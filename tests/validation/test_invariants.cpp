@@ -251,6 +251,9 @@ TEST(Invariants, UnitInvariance) {
   const auto a = run(m), b = run(mm);
   ASSERT_TRUE(a.base_reaction && b.base_reaction);
   EXPECT_LT(relative_error(*b.base_reaction, *a.base_reaction), 1e-7) << *a.base_reaction << " vs " << *b.base_reaction;
+  ASSERT_TRUE(a.initial_base_reaction && b.initial_base_reaction);
+  EXPECT_LT(relative_error(*b.initial_base_reaction, *a.initial_base_reaction), 1e-9)
+      << *a.initial_base_reaction << " vs " << *b.initial_base_reaction;
 }
 
 // Pyramids: an inscribed pyramid is a subset of the cone (safe), a circumscribed one a superset,

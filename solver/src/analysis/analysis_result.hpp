@@ -115,6 +115,10 @@ struct AnalysisResult {
 
   std::optional<double> load_multiplier;  ///< when Collapse in a load-multiplier analysis
   std::optional<double> base_reaction;    ///< kN, when Collapse in a settlement analysis
+  /// kN, the reaction before settlement (analysis/initial_reaction.hpp: the structure as one rigid
+  /// body on uniformly elastic ground); with Collapse under settlement, when defined.
+  std::optional<double> initial_base_reaction;
+  bool initial_base_lifts = false;  ///< part of the base is out of contact in that initial state
   Vec3 settlement_direction = Vec3::Zero();
 
   Mechanism mechanism;  ///< filled for Collapse and CannotStand (falling blocks)

@@ -1,6 +1,7 @@
 #include "analysis/limit_analysis.hpp"
 
 #include "analysis/formulation.hpp"
+#include "analysis/initial_reaction.hpp"
 #include "analysis/mechanism.hpp"
 #include "model/errors.hpp"
 #include "rbla/conic/io.hpp"
@@ -208,6 +209,31 @@ std::string count(std::size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
+// The loss of base reaction at collapse needs the reaction before settlement; see
+// initial_reaction.hpp for the definition used and why one is needed.
+void record_initial_reaction(const model::Model& m, AnalysisResult& result) {
+  const InitialReaction initial = initial_base_reaction(m, m.analysis.settlement_direction);
+  if (!initial.value) {
+    result.warnings.push_back({"initial_reaction_undefined",
+                               "the base reaction before settlement (and so its loss) is not reported: " +
+                                   initial.why_not,
+                               "/analysis"});
+    return;
+  }
+  result.initial_base_reaction = *initial.value;
+  result.initial_base_lifts = initial.base_lifts;
+  const double at_collapse = result.base_reaction.value_or(0.0);
+  // R at collapse is the smallest admissible reaction; the rigid-body estimate ignores the joints
+  // inside the structure, so it can fall below it when the structure could not carry that state.
+  if (*initial.value < at_collapse - 1e-6 * std::max(1.0, std::abs(at_collapse))) {
+    result.warnings.push_back({"initial_reaction_below_collapse",
+                               "the base reaction before settlement, estimated with the structure as one rigid "
+                               "body on elastic ground, is below the reaction at collapse: the joints cannot "
+                               "carry that initial state, and the reported loss is negative",
+                               "/analysis"});
+  }
+}
+
 void write_verdict_text(const model::Model& m, AnalysisResult& result) {
   const std::string force_unit = m.units.force_name;
   std::size_t falling = 0;
@@ -216,8 +242,16 @@ void write_verdict_text(const model::Model& m, AnalysisResult& result) {
   switch (result.verdict) {
     case Verdict::Collapse:
       if (result.base_reaction) {
+        std::string loss;
+        if (result.initial_base_reaction) {
+          const double r0 = *result.initial_base_reaction;
+          loss = " (before settlement " + format(r0 / m.units.force_to_kN) + " " + force_unit + ", loss " +
+                 format((r0 - *result.base_reaction) / m.units.force_to_kN) + " " + force_unit;
+          if (r0 > 0) loss += " = " + format(100.0 * (r0 - *result.base_reaction) / r0, 3) + " %";
+          loss += ")";
+        }
         result.verdict_text = "Collapse under settlement: base reaction at collapse R = " +
-                              format(*result.base_reaction / m.units.force_to_kN) + " " + force_unit + "; " +
+                              format(*result.base_reaction / m.units.force_to_kN) + " " + force_unit + loss + "; " +
                               count(cracked, "interface cracks", "interfaces crack") + ".";
       } else {
         result.verdict_text = "Collapse at load multiplier alpha = " + format(result.load_multiplier.value_or(0.0)) +
@@ -534,8 +568,12 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
       }
     }
     if (result.verdict == Verdict::Collapse) {
-      if (formulation.settlement) result.base_reaction = value;
-      else result.load_multiplier = value;
+      if (formulation.settlement) {
+        result.base_reaction = value;
+        record_initial_reaction(m, result);
+      } else {
+        result.load_multiplier = value;
+      }
     }
   }
   write_verdict_text(m, result);

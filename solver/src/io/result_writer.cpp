@@ -69,7 +69,7 @@ json warnings_json(const model::Model& model) {
 }
 
 json model_only_result(const model::Model& model, const StageTimings& timings, const std::string& source) {
-  json result{{"schema_version", "1.0.0"},
+  json result{{"schema_version", "1.1.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
               {"verdict", "Model read and checked; no analysis was run."},
@@ -177,6 +177,11 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
     out["base_reaction"] = {{"at_collapse", non_negative(*result.base_reaction / f)},
                             {"direction", {d.x(), d.y(), d.z()}},
                             {"moving_blocks", moving}};
+    if (result.initial_base_reaction) {
+      out["base_reaction"]["initial"] = non_negative(*result.initial_base_reaction / f);
+      out["base_reaction"]["loss"] = (*result.initial_base_reaction - *result.base_reaction) / f;
+      out["base_reaction"]["initial_base_lifts"] = result.initial_base_lifts;
+    }
   }
 
   const bool has_mechanism = result.verdict == Verdict::Collapse || result.verdict == Verdict::CannotStand;

@@ -375,8 +375,11 @@ std::string title_text(const model::Model& model, const AnalysisResult& result) 
       if (result.base_reaction &&
           (result.type == model::AnalysisType::Settlement || !result.load_multiplier)) {
         const double factor = model.units.force_to_kN > 0.0 ? model.units.force_to_kN : 1.0;
-        return "Collapse under settlement — base reaction R = " + significant5(*result.base_reaction / factor) +
-               " " + model.units.force_name;
+        std::string title = "Collapse under settlement — base reaction R = " +
+                            significant5(*result.base_reaction / factor) + " " + model.units.force_name;
+        if (result.initial_base_reaction)
+          title += " (R₀ = " + significant5(*result.initial_base_reaction / factor) + " before settlement)";
+        return title;
       }
       if (result.load_multiplier) return "Collapse mechanism — α = " + fixed(*result.load_multiplier, 4);
       return result.type == model::AnalysisType::Settlement ? "Collapse under settlement" : "Collapse mechanism";

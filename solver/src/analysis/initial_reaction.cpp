@@ -1,0 +1,201 @@
+#include "analysis/initial_reaction.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+namespace rbla::analysis {
+namespace {
+
+using model::Vec3;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+// One interface between the rigid body and the ground. The spring pressure at x is
+// p(x) = g(x)ᵀ s with g(x) = [n; (x − o) × n] (n: unit normal from the support into the body,
+// o: the body's reference point) and s the body's generalised displacement times the stiffness;
+// the pressure pushes the body along n.
+struct BaseFace {
+  std::vector<Vec3> polygon;  // the whole interface
+  std::vector<Vec3> contact;  // the part in compression (the whole polygon at first)
+  Vec3 normal = Vec3::UnitZ();
+  bool moving = false;
+};
+
+Vec6 g_of(const Vec3& x, const Vec3& n, const Vec3& o) {
+  Vec6 g;
+  g.head<3>() = n;
+  g.tail<3>() = (x - o).cross(n);
+  return g;
+}
+
+// Calls f(weight, point) for a quadrature over the polygon that is exact for polynomials of
+// degree 2 (the edge midpoints of each triangle of a fan, weight area/3). Areas are signed along
+// n, so a non-convex polygon given in order is still integrated exactly.
+template <class F>
+void integrate_quadratic(const std::vector<Vec3>& polygon, const Vec3& n, F&& f) {
+  if (polygon.size() < 3) return;
+  double sign = 0;
+  for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+    sign += (polygon[k] - polygon[0]).cross(polygon[k + 1] - polygon[0]).dot(n);
+  sign = sign < 0 ? -1.0 : 1.0;
+  for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
+    const Vec3 &a = polygon[0], &b = polygon[k], &c = polygon[k + 1];
+    const double area = 0.5 * sign * (b - a).cross(c - a).dot(n);
+    f(area / 3.0, 0.5 * (a + b));
+    f(area / 3.0, 0.5 * (b + c));
+    f(area / 3.0, 0.5 * (c + a));
+  }
+}
+
+// The part of `polygon` where the affine pressure p = g(x)ᵀ s is ≥ 0 (Sutherland–Hodgman
+// against one half-space; p is affine on the plane, so crossings are found exactly).
+std::vector<Vec3> compressed_part(const std::vector<Vec3>& polygon, const Vec3& n, const Vec3& o, const Vec6& s) {
+  std::vector<Vec3> out;
+  const std::size_t count = polygon.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec3& a = polygon[k];
+    const Vec3& b = polygon[(k + 1) % count];
+    const double pa = g_of(a, n, o).dot(s), pb = g_of(b, n, o).dot(s);
+    if (pa >= 0) out.push_back(a);
+    if ((pa >= 0) != (pb >= 0)) out.push_back(a + (pa / (pa - pb)) * (b - a));
+  }
+  return out;
+}
+
+double contact_area(const std::vector<Vec3>& polygon, const Vec3& n) {
+  double area = 0;
+  integrate_quadratic(polygon, n, [&](double w, const Vec3&) { area += w; });
+  return area;
+}
+
+}  // namespace
+
+InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
+  InitialReaction out;
+  const std::size_t num_blocks = m.blocks.size();
+
+  // Groups of free blocks joined by free-free interfaces (union-find with path halving).
+  std::vector<int> parent(num_blocks);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int b) {
+    while (parent[b] != b) b = parent[b] = parent[parent[b]];
+    return b;
+  };
+  for (const auto& face : m.interfaces) {
+    if (!m.blocks[face.block_a].is_support() && !m.blocks[face.block_b].is_support())
+      parent[find(face.block_a)] = find(face.block_b);
+  }
+
+  double total = 0;
+  std::vector<bool> done(num_blocks, false);
+  for (std::size_t root_block = 0; root_block < num_blocks; ++root_block) {
+    if (m.blocks[root_block].is_support()) continue;
+    const int root = find(static_cast<int>(root_block));
+    if (done[root]) continue;
+    done[root] = true;
+
+    std::vector<BaseFace> base;
+    double base_area = 0;
+    Vec3 o = Vec3::Zero();  // area centroid of the base: keeps K well scaled
+    for (const auto& face : m.interfaces) {
+      const bool a_support = m.blocks[face.block_a].is_support();
+      const bool b_support = m.blocks[face.block_b].is_support();
+      if (a_support == b_support) continue;
+      const int body = a_support ? face.block_b : face.block_a;
+      if (find(body) != root) continue;
+      const int ground = a_support ? face.block_a : face.block_b;
+      BaseFace f;
+      f.polygon = face.polygon;
+      f.contact = face.polygon;
+      f.normal = a_support ? face.normal : Vec3(-face.normal);  // from the support into the body
+      f.moving = m.blocks[ground].role == model::BlockRole::MovingSupport;
+      base.push_back(std::move(f));
+      base_area += face.area;
+      o += face.area * face.centroid;
+    }
+    if (base.empty() || !(base_area > 0)) {
+      out.why_not = "a group of free blocks touches no support";
+      return out;
+    }
+    o /= base_area;
+
+    // Dead loads of the group as a wrench about o: self-weight and fixed loads.
+    Vec6 load = Vec6::Zero();
+    auto add = [&](const Vec3& force, const Vec3& point, const Vec3& moment) {
+      load.head<3>() += force;
+      load.tail<3>() += (point - o).cross(force) + moment;
+    };
+    for (std::size_t b = 0; b < num_blocks; ++b) {
+      if (!m.blocks[b].is_support() && find(static_cast<int>(b)) == root)
+        add(m.blocks[b].weight() * m.gravity, m.blocks[b].centroid, Vec3::Zero());
+    }
+    for (const auto& load_entry : m.dead_loads) {
+      if (find(load_entry.block) == root) add(load_entry.force, load_entry.point, load_entry.moment);
+    }
+
+    // No-tension iteration: solve on the part in contact, lift where the pressure pulls, repeat
+    // until the contact set stops changing.
+    constexpr int kMaxPasses = 100;
+    Vec6 s = Vec6::Zero();
+    bool settled = false;
+    int pass = 0;
+    for (; pass < kMaxPasses && !settled; ++pass) {
+      Mat6 K = Mat6::Zero();
+      for (const BaseFace& f : base) {
+        integrate_quadratic(f.contact, f.normal, [&](double w, const Vec3& x) {
+          const Vec6 g = g_of(x, f.normal, o);
+          K.noalias() += w * g * g.transpose();
+        });
+      }
+      // Normal springs alone give no stiffness to some motions (sliding on a flat base): the
+      // least-squares solution is the one with no motion there; it is valid only if it carries
+      // the whole load.
+      const Eigen::CompleteOrthogonalDecomposition<Mat6> decomposition(K);
+      s = decomposition.solve(-load);
+      const double imbalance = (K * s + load).norm();
+      if (!(imbalance <= 1e-9 * load.norm())) {
+        out.why_not =
+            "the dead loads have a part that normal base pressure cannot carry (for example a horizontal "
+            "load on a flat base)";
+        return out;
+      }
+      double changed = 0, contact = 0;
+      for (BaseFace& f : base) {
+        std::vector<Vec3> next = compressed_part(f.polygon, f.normal, o, s);
+        const double before = contact_area(f.contact, f.normal);
+        const double after = contact_area(next, f.normal);
+        changed += std::abs(after - before);
+        contact += after;
+        f.contact = std::move(next);
+      }
+      if (!(contact > 1e-12 * base_area)) {
+        out.why_not = "the base lifts everywhere (the dead loads would need tension in the ground)";
+        return out;
+      }
+      settled = changed <= 1e-12 * base_area;
+    }
+    if (!settled) {
+      out.why_not = "the no-tension base pressure did not settle in " + std::to_string(kMaxPasses) + " passes";
+      return out;
+    }
+    out.iterations = std::max(out.iterations, pass);
+    for (const BaseFace& f : base) {
+      if (contact_area(f.contact, f.normal) < contact_area(f.polygon, f.normal) * (1.0 - 1e-12))
+        out.base_lifts = true;
+      if (!f.moving) continue;
+      // Force of the body on the support: −p n; its component along d is what the ground holds.
+      double pressure_resultant = 0;
+      integrate_quadratic(f.contact, f.normal,
+                          [&](double w, const Vec3& x) { pressure_resultant += w * g_of(x, f.normal, o).dot(s); });
+      total += pressure_resultant * (-f.normal.dot(d));
+    }
+  }
+  out.value = total;
+  return out;
+}
+
+}  // namespace rbla::analysis
