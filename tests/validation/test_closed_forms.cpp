@@ -288,6 +288,23 @@ TEST(ClosedForms, InitialBaseReactionNavier) {
   }
 }
 
+// A horizontal dead load on a flat base: normal springs cannot carry it, so the initial reaction
+// is not defined; the run says so and still reports the reaction at collapse.
+TEST(ClosedForms, InitialBaseReactionUndefinedUnderHorizontalDeadLoad) {
+  json blocks = json::array({box_block("fixed", -0.5, -0.5, -0.5, 1.0, 1.5, 0.0, "fixed"),
+                             box_block("moving", 1.001, -0.5, -0.5, 4.5, 1.5, 0.0, "moving_support"),
+                             box_block("B", 0.0, 0.0, 0.0, 4.0, 1.0, 1.0)});
+  json model = model_with(blocks);
+  model["loads"] = {{"dead", json::array({{{"block", "B"}, {"force", {5.0, 0.0, 0.0}}}})}};
+  model["analysis"] = {{"type", "settlement"}};
+  const auto r = run(model);
+  ASSERT_EQ(r.verdict, Verdict::Collapse) << r.verdict_text;
+  EXPECT_TRUE(r.base_reaction.has_value());
+  EXPECT_FALSE(r.initial_base_reaction.has_value());
+  EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(),
+                          [](const auto& w) { return w.code == "initial_reaction_undefined"; }));
+}
+
 // Least thickness of a semicircular arch with radial joints under self-weight.
 //
 // Reference: the continuous (infinitely many radial joints) solution of Milankovitch (1907),
