@@ -16,7 +16,7 @@
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N]\n",
+                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N] [--reg-static D] [--refine-tol T] [--step-fraction F]\n",
                  argv[0]);
     return 2;
   }
@@ -39,6 +39,12 @@ int main(int argc, char** argv) {
                           : std::strcmp(name, "default") == 0 ? rbla::conic::Ordering::CholmodDefault
                           : std::strcmp(name, "amd") == 0     ? rbla::conic::Ordering::Amd
                                                               : rbla::conic::Ordering::Best;
+    } else if (std::strcmp(argv[k], "--reg-static") == 0 && k + 1 < argc) {
+      settings.reg_static = std::atof(argv[++k]);
+    } else if (std::strcmp(argv[k], "--refine-tol") == 0 && k + 1 < argc) {
+      settings.refine_tol_rel = std::atof(argv[++k]);
+    } else if (std::strcmp(argv[k], "--step-fraction") == 0 && k + 1 < argc) {
+      settings.step_fraction = std::atof(argv[++k]);
     } else {
       std::fprintf(stderr, "unknown option %s\n", argv[k]);
       return 2;

@@ -4,6 +4,7 @@
 #include <dlfcn.h>
 
 #include <cstring>
+#include <vector>
 
 #include "rbla/conic/problem.hpp"
 
@@ -100,6 +101,10 @@ struct SparseCholesky::Impl {
   cholmod_dense* work_e = nullptr;
   Ordering ordering;
   int n = 0;
+  // The same matrix as its upper triangle (CSC), which CHOLMOD's supernodal factorisation
+  // permutes with one transpose instead of two (cholmod_factorize.c).
+  std::vector<int> upper_col_ptr, upper_row_ind, lower_to_upper;
+  std::vector<double> upper_values;
 };
 
 SparseCholesky::SparseCholesky(Ordering ordering) : impl_(std::make_unique<Impl>()) {
@@ -148,11 +153,29 @@ void SparseCholesky::analyze(int n, const int* col_ptr, const int* row_ind) {
   std::memset(&a, 0, sizeof a);
   a.nrow = static_cast<size_t>(n);
   a.ncol = static_cast<size_t>(n);
-  a.nzmax = static_cast<size_t>(col_ptr[n]);
-  a.p = const_cast<int*>(col_ptr);
-  a.i = const_cast<int*>(row_ind);
+  const int nnz = col_ptr[n];
+  auto& up = impl_->upper_col_ptr;
+  auto& ui = impl_->upper_row_ind;
+  auto& map = impl_->lower_to_upper;
+  up.assign(static_cast<std::size_t>(n) + 1, 0);
+  ui.resize(static_cast<std::size_t>(nnz));
+  map.resize(static_cast<std::size_t>(nnz));
+  impl_->upper_values.resize(static_cast<std::size_t>(nnz));
+  for (int p = 0; p < nnz; ++p) ++up[static_cast<std::size_t>(row_ind[p]) + 1];
+  for (int j = 0; j < n; ++j) up[j + 1] += up[j];
+  std::vector<int> next(up.begin(), up.end() - 1);
+  for (int j = 0; j < n; ++j) {
+    for (int p = col_ptr[j]; p < col_ptr[j + 1]; ++p) {
+      const int q = next[static_cast<std::size_t>(row_ind[p])]++;
+      ui[static_cast<std::size_t>(q)] = j;  // column j of the lower triangle is row j of the upper
+      map[static_cast<std::size_t>(p)] = q;
+    }
+  }
+  a.nzmax = static_cast<size_t>(nnz);
+  a.p = up.data();
+  a.i = ui.data();
   a.x = nullptr;
-  a.stype = -1;  // lower triangle stored
+  a.stype = 1;  // upper triangle stored
   a.itype = CHOLMOD_INT;
   a.xtype = CHOLMOD_PATTERN;
   a.dtype = CHOLMOD_DOUBLE;
@@ -169,7 +192,13 @@ bool SparseCholesky::factorize(const double* values, double shift) {
   if (impl_->n == 0) return true;
   cholmod_common& c = impl_->common;
   cholmod_sparse& a = impl_->matrix;
-  a.x = const_cast<double*>(values);
+  {
+    const int nnz = static_cast<int>(impl_->lower_to_upper.size());
+    const int* map = impl_->lower_to_upper.data();
+    double* upper = impl_->upper_values.data();
+    for (int p = 0; p < nnz; ++p) upper[map[p]] = values[p];
+  }
+  a.x = impl_->upper_values.data();
   a.xtype = CHOLMOD_REAL;
   double beta[2] = {shift, 0.0};
   const SerialOpenMp serial_openmp;
