@@ -175,7 +175,8 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
     }
     const model::Vec3& d = result.settlement_direction;
     out["base_reaction"] = {{"at_collapse", non_negative(*result.base_reaction / f)},
-                            {"direction", {d.x(), d.y(), d.z()}},
+                            // + 0.0 turns a negated zero (-0.0, from flipping gravity) into 0.
+                            {"direction", {d.x() + 0.0, d.y() + 0.0, d.z() + 0.0}},
                             {"moving_blocks", moving}};
     if (result.initial_base_reaction) {
       out["base_reaction"]["initial"] = non_negative(*result.initial_base_reaction / f);
