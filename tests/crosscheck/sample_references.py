@@ -11,7 +11,8 @@ For settlement samples it also gives the reaction before settlement that rbla re
 (solver/src/analysis/initial_reaction.hpp: the wall as one rigid body on uniformly elastic
 ground), from Navier's linear base pressure in one dimension over the contact segments of the
 bottom course on the two base blocks. This needs only the geometry, no solver; it is valid for a
-flat base whose pressure stays compressive (checked), i.e. the bundled wall_settlement scene.
+flat base whose pressure stays compressive (checked), with self-weight only (no loads.dead) and
+a wall of uniform depth in y (the depth cancels), i.e. the bundled wall_settlement scene.
 
 Usage: sample_references.py RBLA_BINARY SAMPLES_DIR   (prints JSON to stdout)
 """

@@ -232,6 +232,7 @@ double initial_reaction(const std::vector<Segment>& contact, const Segment& movi
     a1 += (s.v * s.v - s.u * s.u) / 2 - xR * (s.v - s.u);
     a0 += -(s.v * s.v * s.v - s.u * s.u * s.u) / 3 + xR * (s.v * s.v - s.u * s.u) / 2;
   }
+  if (std::abs(a1) <= 1e-14 * (std::abs(a0) + 1.0)) return N * (moving.v - moving.u) / area;  // resultant at the centroid: uniform
   c = -a0 / a1;
   if (!(c >= L) && !(c <= 0)) {
     // The zero of the pressure falls inside the base: no tension, cut the contact at c.
@@ -256,25 +257,33 @@ TEST(ClosedForms, InitialBaseReactionNavier) {
   const double L = 4.0, h = 1.0, g = 1e-3, gamma = 18.0;
   const double W = gamma * L * 1.0 * h;
   struct LoadCase {
-    double a, P, xP;  // support edge; a dead point load P (kN, downward) at x = xP on the top face
+    double a, P, xP;      // support edge; a dead point load P (kN, downward) at x = xP on the top face
+    double My = 0.0;      // and a dead moment about +y (kN m): it moves the resultant by My / N
+    bool block_first = false;  // list the block before its supports (interfaces then point the other way)
   };
   // Self-weight alone (full contact); a load inside the kern; loads outside it (the base lifts on
-  // the right, and on the left).
+  // the right, and on the left); a dead moment; the blocks listed the other way round.
   for (const LoadCase& c : {LoadCase{1.0, 0.0, 0.0}, LoadCase{2.5, 0.0, 0.0}, LoadCase{1.5, 40.0, 2.8},
-                            LoadCase{1.0, 300.0, 0.2}, LoadCase{2.0, 300.0, 3.9}}) {
-    SCOPED_TRACE("a=" + std::to_string(c.a) + " P=" + std::to_string(c.P) + " xP=" + std::to_string(c.xP));
-    json blocks = json::array({box_block("fixed", -0.5, -0.5, -0.5, c.a, 1.5, 0.0, "fixed"),
-                               box_block("moving", c.a + g, -0.5, -0.5, L + 0.5, 1.5, 0.0, "moving_support"),
-                               box_block("B", 0.0, 0.0, 0.0, L, 1.0, h)});
+                            LoadCase{1.0, 300.0, 0.2}, LoadCase{2.0, 300.0, 3.9}, LoadCase{1.5, 0.0, 0.0, 30.0},
+                            LoadCase{1.0, 300.0, 0.2, 0.0, true}, LoadCase{2.0, 300.0, 3.9, 0.0, true}}) {
+    SCOPED_TRACE("a=" + std::to_string(c.a) + " P=" + std::to_string(c.P) + " xP=" + std::to_string(c.xP) +
+                 " My=" + std::to_string(c.My) + (c.block_first ? " block first" : ""));
+    json fixed = box_block("fixed", -0.5, -0.5, -0.5, c.a, 1.5, 0.0, "fixed");
+    json moving = box_block("moving", c.a + g, -0.5, -0.5, L + 0.5, 1.5, 0.0, "moving_support");
+    json body = box_block("B", 0.0, 0.0, 0.0, L, 1.0, h);
+    json blocks = c.block_first ? json::array({body, moving, fixed}) : json::array({fixed, moving, body});
     json model = model_with(blocks);
     model["defaults"] = {{"unit_weight", gamma}, {"friction", 0.6}};
-    if (c.P > 0)
-      model["loads"] = {{"dead", json::array({{{"block", "B"}, {"force", {0.0, 0.0, -c.P}}, {"point", {c.xP, 0.5, h}}}})}};
+    json dead = json::array();
+    if (c.P > 0) dead.push_back({{"block", "B"}, {"force", {0.0, 0.0, -c.P}}, {"point", {c.xP, 0.5, h}}});
+    if (c.My != 0) dead.push_back({{"block", "B"}, {"moment", {0.0, c.My, 0.0}}});
+    if (!dead.empty()) model["loads"] = {{"dead", dead}};
     model["analysis"] = {{"type", "settlement"}};
     const auto r = run(model);
     ASSERT_EQ(r.verdict, Verdict::Collapse) << r.verdict_text;
     ASSERT_TRUE(r.initial_base_reaction.has_value()) << r.verdict_text;
-    const double N = W + c.P, xR = (W * L / 2 + c.P * c.xP) / N;
+    // Moments about the y axis through x = 0 (a downward load P at x gives +P x): x_R N = sum.
+    const double N = W + c.P, xR = (W * L / 2 + c.P * c.xP + c.My) / N;
     const std::vector<navier::Segment> contact = {{0.0, c.a}, {c.a + g, L}};
     const double expected = navier::initial_reaction(contact, {c.a + g, L}, N, xR);
     EXPECT_LT(relative_error(*r.initial_base_reaction, expected), kClosedFormTol)

@@ -137,8 +137,17 @@ InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
       if (find(load_entry.block) == root) add(load_entry.force, load_entry.point, load_entry.moment);
     }
 
-    // No-tension iteration: solve on the part in contact, lift where the pressure pulls, repeat
-    // until the contact set stops changing.
+    // Forces and moments mix units: with l = sqrt(base area), D = diag(1, 1, 1, 1/l, 1/l, 1/l)
+    // brings the moment rows and rotation columns to force units, so that the rank decision and
+    // the acceptance test below depend neither on the length unit nor on the size of the base.
+    const double ell = std::sqrt(base_area);
+    Vec6 D;
+    D << 1.0, 1.0, 1.0, 1.0 / ell, 1.0 / ell, 1.0 / ell;
+    const Vec6 scaled_load = D.cwiseProduct(load);
+
+    // No-tension iteration: solve on the part in contact, lift where the pressure pulls, repeat.
+    // Settled when a pass changes neither the contact area nor s: s was then solved on the very
+    // contact it leaves in place (comparing areas alone would miss a neutral axis that turns).
     constexpr int kMaxPasses = 100;
     Vec6 s = Vec6::Zero();
     bool settled = false;
@@ -151,18 +160,23 @@ InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
           K.noalias() += w * g * g.transpose();
         });
       }
+      const Mat6 scaled_K = D.asDiagonal() * K * D.asDiagonal();
       // Normal springs alone give no stiffness to some motions (sliding on a flat base): the
       // least-squares solution is the one with no motion there; it is valid only if it carries
       // the whole load.
-      const Eigen::CompleteOrthogonalDecomposition<Mat6> decomposition(K);
-      s = decomposition.solve(-load);
-      const double imbalance = (K * s + load).norm();
-      if (!(imbalance <= 1e-9 * load.norm())) {
+      Eigen::CompleteOrthogonalDecomposition<Mat6> decomposition;
+      decomposition.setThreshold(1e-10);
+      decomposition.compute(scaled_K);
+      const Vec6 scaled_s = decomposition.solve(-scaled_load);
+      const double imbalance = (scaled_K * scaled_s + scaled_load).norm();
+      if (!(imbalance <= 1e-9 * scaled_load.norm())) {
         out.why_not =
             "the dead loads have a part that normal base pressure cannot carry (for example a horizontal "
             "load on a flat base)";
         return out;
       }
+      const Vec6 previous_scaled_s = D.cwiseInverse().cwiseProduct(s);
+      s = D.cwiseProduct(scaled_s);
       double changed = 0, contact = 0;
       for (BaseFace& f : base) {
         std::vector<Vec3> next = compressed_part(f.polygon, f.normal, o, s);
@@ -176,7 +190,7 @@ InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
         out.why_not = "the base lifts everywhere (the dead loads would need tension in the ground)";
         return out;
       }
-      settled = changed <= 1e-12 * base_area;
+      settled = pass > 0 && changed <= 1e-12 * base_area && (scaled_s - previous_scaled_s).norm() <= 1e-10 * scaled_s.norm();
     }
     if (!settled) {
       out.why_not = "the no-tension base pressure did not settle in " + std::to_string(kMaxPasses) + " passes";

@@ -179,8 +179,10 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
                             {"direction", {d.x() + 0.0, d.y() + 0.0, d.z() + 0.0}},
                             {"moving_blocks", moving}};
     if (result.initial_base_reaction) {
-      out["base_reaction"]["initial"] = non_negative(*result.initial_base_reaction / f);
-      out["base_reaction"]["loss"] = (*result.initial_base_reaction - *result.base_reaction) / f;
+      // The loss is the difference of the two values as written (both clamped at 0 alike).
+      const double initial = non_negative(*result.initial_base_reaction / f);
+      out["base_reaction"]["initial"] = initial;
+      out["base_reaction"]["loss"] = initial - non_negative(*result.base_reaction / f);
       out["base_reaction"]["initial_base_lifts"] = result.initial_base_lifts;
     }
   }
