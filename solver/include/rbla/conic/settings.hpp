@@ -84,10 +84,13 @@ struct Settings {
   /// by every direction) runs preconditioned CG on the exact, unregularised M until
   /// ‖rhs − M q‖∞ ≤ refine_tol_rel · (1 + ‖rhs‖∞). Each Newton direction is then corrected on
   /// its primal and gap equations until max(‖A dx − b dτ + η r_p‖∞, |e_gap|) ≤
-  /// max(refine_tol_rel · (1 + ‖b‖∞ τ), 1e-3 ‖r_p‖∞); the first correction is one plain solve,
-  /// later ones use CG. Every loop stops after refine_max_iter steps or when the error stops
-  /// halving (the correction loop only after its first CG correction: a regularised plain
-  /// solve can leave most of the error when M has eigenvalues below δ).
+  /// max(refine_tol_rel · (1 + ‖b‖∞ τ), 1e-3 ‖r_p‖∞, a tenth of the error that would move the
+  /// objective by tol_gap_rel or the primal residual by tol_feas, in original units); the first
+  /// correction is one plain solve, later ones use CG. Every loop stops after refine_max_iter
+  /// steps or when the error stops halving (the correction loop only after its first CG
+  /// correction: a regularised plain solve can leave most of the error when M has eigenvalues
+  /// below δ). The predictor (while τ ≥ κ) and centrality correctors that are not kept are not
+  /// refined.
   int refine_max_iter = 10;
   double refine_tol_rel = 1e-13;
   Ordering ordering = Ordering::Best;
