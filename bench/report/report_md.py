@@ -112,9 +112,9 @@ def write(results, out):
         " / ".join(m.get("load_average_start", [])), " / ".join(m.get("load_average_end", []))))
     L.append("| run time | %s min |" % m.get("run_minutes"))
     L.append("")
-    L.append("**The machine is shared and noisy.** While this ran, other jobs used the same two "
-             "cores (a fuzzer at nice 19, builds and tests of other engineers); the load averages "
-             "above show how busy it was. Times of one method against another in the same run are "
+    L.append("**The machine is shared and noisy.** Other tenants' jobs can use the same two cores "
+             "at any time; the load averages above (this run's own processes included) show how "
+             "busy it was. Times of one method against another in the same run are "
              "comparable in order of magnitude; single times can be off by tens of per cent. "
              "Short runs (< %g s) are repeated %d times and the median is given; longer runs once."
              % (plan.get("repeat_below_seconds", 2), plan.get("repeats", 3)))
