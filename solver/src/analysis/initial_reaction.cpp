@@ -117,8 +117,10 @@ InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
       base_area += face.area;
       o += face.area * face.centroid;
     }
+    // Messages name one block of the group, so that the user can find it.
+    const std::string group = "the group of free blocks with block '" + m.blocks[root_block].id + "'";
     if (base.empty() || !(base_area > 0)) {
-      out.why_not = "a group of free blocks touches no support";
+      out.why_not = group + " touches no support";
       return out;
     }
     o /= base_area;
@@ -170,9 +172,9 @@ InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
       const Vec6 scaled_s = decomposition.solve(-scaled_load);
       const double imbalance = (scaled_K * scaled_s + scaled_load).norm();
       if (!(imbalance <= 1e-9 * scaled_load.norm())) {
-        out.why_not =
-            "the dead loads have a part that normal base pressure cannot carry (for example a horizontal "
-            "load on a flat base)";
+        out.why_not = "the dead loads on " + group +
+                      " have a part that normal base pressure cannot carry (for example a horizontal load on a "
+                      "flat base)";
         return out;
       }
       const Vec6 previous_scaled_s = D.cwiseInverse().cwiseProduct(s);
@@ -187,13 +189,14 @@ InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
         f.contact = std::move(next);
       }
       if (!(contact > 1e-12 * base_area)) {
-        out.why_not = "the base lifts everywhere (the dead loads would need tension in the ground)";
+        out.why_not = "the base of " + group + " lifts everywhere (its dead loads would need tension in the ground)";
         return out;
       }
       settled = pass > 0 && changed <= 1e-12 * base_area && (scaled_s - previous_scaled_s).norm() <= 1e-10 * scaled_s.norm();
     }
     if (!settled) {
-      out.why_not = "the no-tension base pressure did not settle in " + std::to_string(kMaxPasses) + " passes";
+      out.why_not = "the no-tension base pressure under " + group + " did not settle in " +
+                    std::to_string(kMaxPasses) + " passes";
       return out;
     }
     out.iterations = std::max(out.iterations, pass);
