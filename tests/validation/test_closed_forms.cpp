@@ -297,6 +297,29 @@ TEST(ClosedForms, InitialBaseReactionNavier) {
   }
 }
 
+// Two walls that do not touch are two rigid bodies: R0 is the sum of their own Navier values
+// (one wall carries a load outside its kern, so its base lifts: the no-tension answer is not
+// linear in the load, and one rigid body for both walls would give another value).
+TEST(ClosedForms, InitialBaseReactionOfTwoSeparateBodies) {
+  const double L = 4.0, h = 1.0, g = 1e-3, gamma = 18.0, a = 1.5, P = 300.0, xP = 3.9;
+  const double W = gamma * L * 1.0 * h;
+  json blocks = json::array({box_block("fixed", -0.5, -0.5, -0.5, a, 3.5, 0.0, "fixed"),
+                             box_block("moving", a + g, -0.5, -0.5, L + 0.5, 3.5, 0.0, "moving_support"),
+                             box_block("B1", 0.0, 0.0, 0.0, L, 1.0, h), box_block("B2", 0.0, 2.0, 0.0, L, 3.0, h)});
+  json model = model_with(blocks);
+  model["defaults"] = {{"unit_weight", gamma}, {"friction", 0.6}};
+  model["loads"] = {{"dead", json::array({{{"block", "B2"}, {"force", {0.0, 0.0, -P}}, {"point", {xP, 2.5, h}}}})}};
+  model["analysis"] = {{"type", "settlement"}};
+  const auto r = run(model);
+  ASSERT_EQ(r.verdict, Verdict::Collapse) << r.verdict_text;
+  ASSERT_TRUE(r.initial_base_reaction.has_value()) << r.verdict_text;
+  const std::vector<navier::Segment> contact = {{0.0, a}, {a + g, L}};
+  const double expected = navier::initial_reaction(contact, {a + g, L}, W, L / 2) +
+                          navier::initial_reaction(contact, {a + g, L}, W + P, (W * L / 2 + P * xP) / (W + P));
+  EXPECT_LT(relative_error(*r.initial_base_reaction, expected), kClosedFormTol)
+      << "R0 " << *r.initial_base_reaction << " expected " << expected;
+}
+
 // A horizontal dead load on a flat base: normal springs cannot carry it, so the initial reaction
 // is not defined; the run says so and still reports the reaction at collapse.
 TEST(ClosedForms, InitialBaseReactionUndefinedUnderHorizontalDeadLoad) {

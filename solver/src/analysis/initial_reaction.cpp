@@ -90,23 +90,32 @@ InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
       parent[find(face.block_a)] = find(face.block_b);
   }
 
+  // Members, support interfaces and dead loads of each group, gathered once (a scene of many
+  // loose blocks has as many groups).
+  std::vector<std::vector<int>> members(num_blocks), base_faces(num_blocks), dead_loads(num_blocks);
+  for (std::size_t b = 0; b < num_blocks; ++b)
+    if (!m.blocks[b].is_support()) members[find(static_cast<int>(b))].push_back(static_cast<int>(b));
+  for (std::size_t i = 0; i < m.interfaces.size(); ++i) {
+    const auto& face = m.interfaces[i];
+    const bool a_support = m.blocks[face.block_a].is_support();
+    if (a_support != m.blocks[face.block_b].is_support())
+      base_faces[find(a_support ? face.block_b : face.block_a)].push_back(static_cast<int>(i));
+  }
+  for (std::size_t i = 0; i < m.dead_loads.size(); ++i)
+    dead_loads[find(m.dead_loads[i].block)].push_back(static_cast<int>(i));
+
   double total = 0;
-  std::vector<bool> done(num_blocks, false);
   for (std::size_t root_block = 0; root_block < num_blocks; ++root_block) {
-    if (m.blocks[root_block].is_support()) continue;
-    const int root = find(static_cast<int>(root_block));
-    if (done[root]) continue;
-    done[root] = true;
+    if (m.blocks[root_block].is_support() || find(static_cast<int>(root_block)) != static_cast<int>(root_block))
+      continue;  // one pass per group, at its root
+    const int root = static_cast<int>(root_block);
 
     std::vector<BaseFace> base;
     double base_area = 0;
     Vec3 o = Vec3::Zero();  // area centroid of the base: keeps K well scaled
-    for (const auto& face : m.interfaces) {
+    for (int index : base_faces[root]) {
+      const auto& face = m.interfaces[index];
       const bool a_support = m.blocks[face.block_a].is_support();
-      const bool b_support = m.blocks[face.block_b].is_support();
-      if (a_support == b_support) continue;
-      const int body = a_support ? face.block_b : face.block_a;
-      if (find(body) != root) continue;
       const int ground = a_support ? face.block_a : face.block_b;
       BaseFace f;
       f.polygon = face.polygon;
@@ -131,13 +140,8 @@ InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
       load.head<3>() += force;
       load.tail<3>() += (point - o).cross(force) + moment;
     };
-    for (std::size_t b = 0; b < num_blocks; ++b) {
-      if (!m.blocks[b].is_support() && find(static_cast<int>(b)) == root)
-        add(m.blocks[b].weight() * m.gravity, m.blocks[b].centroid, Vec3::Zero());
-    }
-    for (const auto& load_entry : m.dead_loads) {
-      if (find(load_entry.block) == root) add(load_entry.force, load_entry.point, load_entry.moment);
-    }
+    for (int b : members[root]) add(m.blocks[b].weight() * m.gravity, m.blocks[b].centroid, Vec3::Zero());
+    for (int i : dead_loads[root]) add(m.dead_loads[i].force, m.dead_loads[i].point, m.dead_loads[i].moment);
 
     // Forces and moments mix units: with l = sqrt(base area), D = diag(1, 1, 1, 1/l, 1/l, 1/l)
     // brings the moment rows and rotation columns to force units, so that the rank decision and
