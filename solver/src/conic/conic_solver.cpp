@@ -518,8 +518,11 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
       // (A dx is accurate) and corrected by the same elimination with right-hand side
       // (−e_p, 0, −e_g, 0). dx is updated incrementally and dz is formed once at the end from the
       // dual equation, which keeps W dz + W⁻¹dx unchanged (the refinement never reads dz).
-      auto refine_direction = [&](double eta, double d_kappa, Vec& out_dx, Vec& out_dy, Vec& out_dz,
-                                  double& out_dtau, double& out_dkappa) {
+      // dz_current: out_dz already belongs to (out_dx, out_dy, out_dτ); it is then formed again
+      // only if a correction changed them.
+      auto refine_direction = [&](double eta, double d_kappa, bool dz_current, Vec& out_dx, Vec& out_dy,
+                                  Vec& out_dz, double& out_dtau, double& out_dkappa) {
+        bool corrected = false;
         double previous = std::numeric_limits<double>::infinity();
         for (int pass = 0; pass < s.refine_max_iter; ++pass) {
           ep = A * out_dx - b * out_dtau + eta * rp;
@@ -547,8 +550,9 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
           out_dx += ddx + dxq * ddtau;
           out_dtau += ddtau;
           out_dkappa = (d_kappa - kappa * out_dtau) / tau;
+          corrected = true;
         }
-        out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
+        if (corrected || !dz_current) out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
       };
       // Solves the Newton system for (η, d, d_κ); see the header comment. Unrefined (refine =
       // false), the direction has the plain solve's error, about 1e-8 late in a solve.
@@ -567,7 +571,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
         out_dx += dxq * out_dtau;
         out_dkappa = (d_kappa - kappa * out_dtau) / tau;
         if (refine) {
-          refine_direction(eta, d_kappa, out_dx, out_dy, out_dz, out_dtau, out_dkappa);
+          refine_direction(eta, d_kappa, false, out_dx, out_dy, out_dz, out_dtau, out_dkappa);
         } else {
           out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
         }
@@ -636,7 +640,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
         ++info.num_centrality_correctors;
         double alpha_c = s.step_fraction * std::min(1.0, max_step(cdx, cdz, cdtau, cdkappa));
         if (alpha_c >= 1.01 * alpha) {
-          refine_direction(1.0 - sigma, kappa_rhs + kappa_change, cdx, cdy, cdz, cdtau, cdkappa);
+          refine_direction(1.0 - sigma, kappa_rhs + kappa_change, true, cdx, cdy, cdz, cdtau, cdkappa);
           alpha_c = s.step_fraction * std::min(1.0, max_step(cdx, cdz, cdtau, cdkappa));
         }
         if (!(alpha_c >= 1.01 * alpha) || refinement_failed != refinement_failed_before) {
