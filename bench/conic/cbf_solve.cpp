@@ -2,7 +2,7 @@
 // one JSON object with the outcome. Used by tests/crosscheck/crosscheck_cvxopt.py.
 //   rbla_conic_cbf_solve problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]
 //                        [--ordering best|amd|metis|default] [--correctors K]
-//                        [--blas-threads N]
+//                        [--blas-threads N] [--threads 1|2] [--split-min-rows R]
 
 #include <cstdio>
 #include <cstdlib>
@@ -16,7 +16,7 @@
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N] [--reg-static D] [--refine-tol T] [--step-fraction F]\n",
+                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N] [--threads 1|2] [--split-min-rows R] [--reg-static D] [--refine-tol T] [--step-fraction F]\n",
                  argv[0]);
     return 2;
   }
@@ -31,6 +31,10 @@ int main(int argc, char** argv) {
       settings.dense_columns = false;
     } else if (std::strcmp(argv[k], "--blas-threads") == 0 && k + 1 < argc) {
       settings.blas_threads = std::atoi(argv[++k]);
+    } else if (std::strcmp(argv[k], "--threads") == 0 && k + 1 < argc) {
+      settings.threads = std::atoi(argv[++k]);
+    } else if (std::strcmp(argv[k], "--split-min-rows") == 0 && k + 1 < argc) {
+      settings.split_min_rows = std::atoi(argv[++k]);
     } else if (std::strcmp(argv[k], "--correctors") == 0 && k + 1 < argc) {
       settings.max_centrality_correctors = std::atoi(argv[++k]);
     } else if (std::strcmp(argv[k], "--ordering") == 0 && k + 1 < argc) {

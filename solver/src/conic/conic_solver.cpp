@@ -113,10 +113,16 @@ struct ConicSolver::Impl {
     detect_dense_columns();
     rescale();
     const auto symbolic_start = Clock::now();
-    normal = std::make_unique<detail::NormalEquations>(A, blocks, is_dense, settings.ordering);
+    normal = std::make_unique<detail::NormalEquations>(A, blocks, is_dense, settings.ordering,
+                                                       split_normal_matrix());
     symbolic_seconds = seconds_since(symbolic_start);
     check_memory();
     setup_seconds = seconds_since(start);
+  }
+
+  // Whether the normal matrix is worth splitting over two threads (Settings::threads).
+  bool split_normal_matrix() const {
+    return settings.threads >= 2 && A.rows() >= settings.split_min_rows;
   }
 
   // Refuses a factor larger than the memory limit (Settings::memory_limit_bytes) before the
@@ -124,7 +130,7 @@ struct ConicSolver::Impl {
   void check_memory() const {
     double limit = settings.memory_limit_bytes;
     if (limit == 0) limit = 0.8 * available_memory_bytes();
-    const double need = normal->cholesky().factor_bytes();
+    const double need = normal->factor_bytes();
     if (limit > 0 && need > limit) {
       char text[400];
       std::snprintf(text, sizeof text,
@@ -132,7 +138,7 @@ struct ConicSolver::Impl {
                     "needs %.2f GB, more than the %.2f GB this solve may use; use a coarser "
                     "model, the planar formulation or a pyramid cone, or a machine with more "
                     "memory",
-                    static_cast<long long>(A.rows()), normal->cholesky().factor_nonzeros(),
+                    static_cast<long long>(A.rows()), normal->factor_nonzeros(),
                     need / 1e9, limit / 1e9);
       throw ConicResourceError(text);
     }
@@ -344,15 +350,15 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
   std::ostream* log = s.verbose ? (s.log_stream ? s.log_stream : &std::cout) : nullptr;
 
   Info info;
-  info.backend = normal->cholesky().backend_name();
+  info.backend = normal->backend_name();
   info.setup_seconds = setup_seconds;
   info.symbolic_seconds = symbolic_seconds;
   info.num_dense_columns = normal->num_dense_columns();
-  info.num_factor_nonzeros = normal->cholesky().factor_nonzeros();
-  info.factor_bytes = normal->cholesky().factor_bytes();
+  info.num_factor_nonzeros = normal->factor_nonzeros();
+  info.factor_bytes = normal->factor_bytes();
   if (log)
     print_banner(*log, problem, info.num_dense_columns, normal->num_matrix_nonzeros(),
-                 info.num_factor_nonzeros, normal->cholesky().factor_flops(), info.factor_bytes,
+                 info.num_factor_nonzeros, normal->factor_flops(), info.factor_bytes,
                  info.backend);
 
   const Eigen::Index n = A.cols();
@@ -664,7 +670,8 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
       if (!normal_without_dense) {
         const auto start_symbolic = Clock::now();
         normal_without_dense = std::make_unique<detail::NormalEquations>(
-            A, blocks, std::vector<bool>(is_dense.size(), false), s.ordering);
+            A, blocks, std::vector<bool>(is_dense.size(), false), s.ordering,
+            split_normal_matrix());
         info.symbolic_seconds += seconds_since(start_symbolic);
       }
       ne = normal_without_dense.get();
@@ -858,8 +865,8 @@ void ConicSolver::set_progress_callback(ProgressCallback callback) {
 Settings& ConicSolver::settings() { return impl_->settings; }
 const ConicProblem& ConicSolver::problem() const { return impl_->problem; }
 int ConicSolver::num_symbolic_analyses() const {
-  return impl_->normal->cholesky().num_analyses() +
-         (impl_->normal_without_dense ? impl_->normal_without_dense->cholesky().num_analyses() : 0);
+  return impl_->normal->num_analyses() +
+         (impl_->normal_without_dense ? impl_->normal_without_dense->num_analyses() : 0);
 }
 
 Solution solve(const ConicProblem& problem, const Settings& settings) {

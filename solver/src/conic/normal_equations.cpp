@@ -17,7 +17,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
                                  const std::vector<ScalingBlock>& blocks,
-                                 const std::vector<bool>& is_dense_column, Ordering ordering)
+                                 const std::vector<bool>& is_dense_column, Ordering ordering,
+                                 bool split)
     : m_(A.rows()), cholesky_(ordering) {
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
@@ -108,7 +109,34 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
   scratch_.assign(max_scratch, 0.0);
 
   set_A_values(A);
-  cholesky_.analyze(static_cast<int>(m_), col_ptr_.data(), row_ind_.data());
+  ++num_analyses_;
+  if (split) {
+    split_ = std::make_unique<SplitCholesky>(ordering);
+    if (!split_->analyze(static_cast<int>(m_), col_ptr_.data(), row_ind_.data())) split_.reset();
+  }
+  if (split_) {
+    // A block lies in one domain and the separator (the separator decouples the domains); one
+    // on the separator alone counts for domain 0. Only blocks that reach the separator add to a
+    // share.
+    const auto& part = split_->part_of_row();
+    for (BlockData& bd : blocks_) {
+      if (bd.dense) continue;
+      int domain = 0;
+      bool on_separator = false;
+      for (int row : bd.rows) {
+        const unsigned char p = part[static_cast<std::size_t>(row)];
+        if (p == 2)
+          on_separator = true;
+        else
+          domain = p;
+      }
+      if (on_separator) bd.separator_share = static_cast<signed char>(domain);
+    }
+    for (auto& share : separator_share_)
+      share.assign(static_cast<std::size_t>(split_->num_separator_slots()), 0.0);
+  } else {
+    cholesky_.analyze(static_cast<int>(m_), col_ptr_.data(), row_ind_.data());
+  }
 
   if (!dense_blocks_.empty()) dense_D_.setZero(m_, static_cast<Eigen::Index>(dense_blocks_.size()));
 }
@@ -126,11 +154,16 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   auto start = std::chrono::steady_clock::now();
   packed_W2_ = packed_W2;
   std::fill(values_.begin(), values_.end(), 0.0);
+  for (auto& share : separator_share_) std::fill(share.begin(), share.end(), 0.0);
   for (const BlockData& bd : blocks_) {
     if (bd.dense) continue;
     const std::size_t r = bd.rows.size();
     const double* Ak = local_A_.data() + bd.a_offset;
     const int* pos = value_map_.data() + bd.map_offset;
+    if (bd.separator_share >= 0) {
+      add_block_with_share(bd);
+      continue;
+    }
     if (bd.size == 1) {
       const double w = packed_W2_[bd.w2_offset];
       for (std::size_t b = 0; b < r; ++b) {
@@ -162,7 +195,11 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   double shift = reg_static + eps * eps * max_diag;
   const BlasThreads threads(blas_threads);
   for (int attempt = 0; attempt <= reg_max_retries; ++attempt) {
-    if (cholesky_.factorize(values_.data(), shift)) {
+    const bool factored =
+        split_ ? split_->factorize(values_.data(), separator_share_[0].data(),
+                                   separator_share_[1].data(), shift)
+               : cholesky_.factorize(values_.data(), shift);
+    if (factored) {
       report.ok = true;
       break;
     }
@@ -184,7 +221,7 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
       for (std::size_t a = 0; a < bd.rows.size(); ++a)
         column[bd.rows[a]] = local_A_[bd.a_offset + a];
       dense_D_.col(j) = column;
-      cholesky_.solve(column, solved);
+      solve_factor(column, solved);
       dense_Minv_D_.col(j) = solved;
     }
     schur.noalias() = dense_D_.transpose() * dense_Minv_D_;
@@ -200,9 +237,54 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   return report;
 }
 
+void NormalEquations::add_block_with_share(const BlockData& bd) {
+  // As the assembly in factor(), and each term that lands on a separator–separator entry also
+  // goes to the share of the block's domain (the shares must be sums of their own terms: a
+  // difference of M's value and the other share could lose the small one to rounding).
+  const std::size_t r = bd.rows.size();
+  const double* Ak = local_A_.data() + bd.a_offset;
+  const int* pos = value_map_.data() + bd.map_offset;
+  const std::vector<int>& slot_of = split_->separator_slot();
+  std::vector<double>& share = separator_share_[static_cast<std::size_t>(bd.separator_share)];
+  const Eigen::Index rr = static_cast<Eigen::Index>(r);
+  Eigen::Map<const Eigen::MatrixXd> A_local(Ak, rr, bd.size);
+  Eigen::Map<const Eigen::MatrixXd> W2(packed_W2_.data() + bd.w2_offset, bd.size, bd.size);
+  Eigen::Map<Eigen::MatrixXd> B(scratch_.data(), rr, bd.size);
+  B.noalias() = A_local * W2;
+  for (Eigen::Index b = 0; b < rr; ++b) {
+    for (Eigen::Index a = b; a < rr; ++a) {
+      const double term = B.row(a).dot(A_local.row(b));
+      const std::size_t p = static_cast<std::size_t>(*pos++);
+      values_[p] += term;
+      const int slot = slot_of[p];
+      if (slot >= 0) share[static_cast<std::size_t>(slot)] += term;
+    }
+  }
+}
+
+void NormalEquations::solve_factor(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
+  if (split_)
+    split_->solve(rhs, out);
+  else
+    cholesky_.solve(rhs, out);
+}
+
+long NormalEquations::factor_nonzeros() const {
+  return split_ ? split_->factor_nonzeros() : cholesky_.factor_nonzeros();
+}
+double NormalEquations::factor_bytes() const {
+  return split_ ? split_->factor_bytes() : cholesky_.factor_bytes();
+}
+double NormalEquations::factor_flops() const {
+  return split_ ? split_->factor_flops() : cholesky_.factor_flops();
+}
+std::string NormalEquations::backend_name() const {
+  return split_ ? split_->backend_name() : cholesky_.backend_name();
+}
+
 void NormalEquations::solve_regularised(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
   ++num_factor_solves_;
-  cholesky_.solve(rhs, out);
+  solve_factor(rhs, out);
   if (!dense_blocks_.empty()) {
     const Eigen::VectorXd w = dense_schur_.solve(dense_D_.transpose() * out);
     out.noalias() -= dense_Minv_D_ * w;

@@ -13,7 +13,8 @@
 // ⇒ (Dᵀ M_s⁻¹ D + diag(1/d)) w = Dᵀ M_s⁻¹ r,  dy = M_s⁻¹ (r − D w)   (Schur complement, k×k).
 // This form stays well defined when d → 0 or d → ∞ (unlike Sherman–Morrison–Woodbury in d).
 //
-// M_s is factored as M_s + δI (δ = static regularisation, raised on failure); each solve is
+// M_s is factored as M_s + δI, by one CHOLMOD factor or, with `split`, by SplitCholesky on two
+// threads (then each block also adds its separator–separator terms to its domain's share); (δ = static regularisation, raised on failure); each solve is
 // then refined by preconditioned CG on the exact, unregularised M (applied as A (W² (Aᵀ v)),
 // never formed). When M_s becomes nearly singular (the dense column carries directions nothing
 // else does), M_s⁻¹D blows up and the bordered solve loses accuracy; the caller detects that
@@ -21,10 +22,13 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCore>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "cone.hpp"
 #include "sparse_cholesky.hpp"
+#include "split_cholesky.hpp"
 
 namespace rbla::conic::detail {
 
@@ -38,8 +42,9 @@ struct FactorReport {
 
 class NormalEquations {
  public:
+  /// split: try SplitCholesky (two domains on two threads); one factor if it declines.
   NormalEquations(const Eigen::SparseMatrix<double>& A, const std::vector<ScalingBlock>& blocks,
-                  const std::vector<bool>& is_dense_column, Ordering ordering);
+                  const std::vector<bool>& is_dense_column, Ordering ordering, bool split);
 
   /// New values of A with the same pattern (the symbolic factorisation is kept).
   void set_A_values(const Eigen::SparseMatrix<double>& A);
@@ -60,10 +65,17 @@ class NormalEquations {
   long num_multiplies() const { return num_multiplies_; }          ///< products with M
   int num_dense_columns() const { return static_cast<int>(dense_blocks_.size()); }
   long num_matrix_nonzeros() const { return static_cast<long>(row_ind_.size()); }
-  SparseCholesky& cholesky() { return cholesky_; }
+  bool is_split() const { return split_ != nullptr; }
+  long factor_nonzeros() const;
+  double factor_bytes() const;   ///< known after construction (symbolic analysis)
+  double factor_flops() const;
+  std::string backend_name() const;
+  int num_analyses() const { return num_analyses_; }
 
  private:
   void solve_regularised(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
+  /// (M_s + δI)⁻¹ rhs by whichever factor is in use.
+  void solve_factor(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
 
   struct BlockData {
     Eigen::Index first_col = 0;
@@ -73,7 +85,9 @@ class NormalEquations {
     std::size_t w2_offset = 0;   // into packed W²
     std::size_t map_offset = 0;  // into value_map_: r(r+1)/2 positions (column b, rows a ≥ b)
     bool dense = false;
+    signed char separator_share = -1;  // SplitCholesky domain whose share gets its SS terms
   };
+  void add_block_with_share(const BlockData& bd);
 
   Eigen::Index m_ = 0;
   std::vector<BlockData> blocks_;
@@ -87,6 +101,9 @@ class NormalEquations {
   std::vector<double> packed_W2_;  // copy from the last factor() (for multiply)
   std::vector<double> scratch_;
   SparseCholesky cholesky_;
+  std::unique_ptr<SplitCholesky> split_;  // in use instead of cholesky_ when set
+  std::vector<double> separator_share_[2];
+  int num_analyses_ = 0;
   double shift_ = 0;
   long num_factor_solves_ = 0;
   mutable long num_multiplies_ = 0;

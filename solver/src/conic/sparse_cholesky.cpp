@@ -3,7 +3,9 @@
 #include <cholmod.h>
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstring>
+#include <mutex>
 #include <vector>
 
 #include "rbla/conic/problem.hpp"
@@ -65,18 +67,36 @@ class SerialOpenMp {
   SerialOpenMp() {
     openmp_regions_inline = true;
     if (!omp_set_levels || !omp_get_levels) return;
-    previous_ = omp_get_levels();
-    omp_set_levels(0);
+    // max-active-levels is one process-wide setting and SplitCholesky factors on two threads at
+    // once: the first scope in saves and lowers it, the last one out restores it.
+    const std::lock_guard<std::mutex> lock(levels_mutex());
+    if (levels_users()++ == 0) {
+      levels_saved() = omp_get_levels();
+      omp_set_levels(0);
+    }
   }
   ~SerialOpenMp() {
     openmp_regions_inline = false;
-    if (previous_ >= 0) omp_set_levels(previous_);
+    if (!omp_set_levels || !omp_get_levels) return;
+    const std::lock_guard<std::mutex> lock(levels_mutex());
+    if (--levels_users() == 0) omp_set_levels(levels_saved());
   }
   SerialOpenMp(const SerialOpenMp&) = delete;
   SerialOpenMp& operator=(const SerialOpenMp&) = delete;
 
  private:
-  int previous_ = -1;
+  static std::mutex& levels_mutex() {
+    static std::mutex mutex;
+    return mutex;
+  }
+  static int& levels_users() {
+    static int users = 0;
+    return users;
+  }
+  static int& levels_saved() {
+    static int saved = 0;
+    return saved;
+  }
 };
 }  // namespace
 
@@ -101,6 +121,8 @@ struct SparseCholesky::Impl {
   cholmod_dense* work_e = nullptr;
   Ordering ordering;
   int n = 0;
+  int trailing = 0;
+  int leading_ordering = -1;  // CHOLMOD's choice for the leading block when trailing > 0
   // The same matrix as its upper triangle (CSC), which CHOLMOD's supernodal factorisation
   // permutes with one transpose instead of two (cholmod_factorize.c).
   std::vector<int> upper_col_ptr, upper_row_ind, lower_to_upper;
@@ -143,10 +165,11 @@ SparseCholesky::~SparseCholesky() {
   cholmod_finish(&c);
 }
 
-void SparseCholesky::analyze(int n, const int* col_ptr, const int* row_ind) {
+void SparseCholesky::analyze(int n, const int* col_ptr, const int* row_ind, int trailing) {
   cholmod_common& c = impl_->common;
   if (impl_->factor) cholmod_free_factor(&impl_->factor, &c);
   impl_->n = n;
+  impl_->trailing = trailing;
   ++num_analyses_;
   if (n == 0) return;  // no equality rows: nothing to factor
   cholmod_sparse& a = impl_->matrix;
@@ -181,7 +204,44 @@ void SparseCholesky::analyze(int n, const int* col_ptr, const int* row_ind) {
   a.dtype = CHOLMOD_DOUBLE;
   a.sorted = 1;
   a.packed = 1;
-  impl_->factor = cholmod_analyze(&a, &c);
+  if (trailing == 0) {
+    impl_->factor = cholmod_analyze(&a, &c);
+  } else {
+    // Order the leading block by the chosen method (its upper triangle is the first `lead`
+    // columns of the upper triangle), then append the trailing rows and analyse the whole
+    // matrix with that permutation as given and no postorder, which would move them.
+    const int lead = n - trailing;
+    std::vector<int> perm(static_cast<std::size_t>(n));
+    if (lead > 0) {
+      a.nrow = a.ncol = static_cast<size_t>(lead);
+      a.nzmax = static_cast<size_t>(up[static_cast<std::size_t>(lead)]);
+      cholmod_factor* leading = cholmod_analyze(&a, &c);
+      if (!leading || c.status < CHOLMOD_OK) {
+        if (leading) cholmod_free_factor(&leading, &c);
+        throw ConicSetupError("CHOLMOD symbolic analysis failed (status " +
+                              std::to_string(c.status) + ")");
+      }
+      const int* leading_perm = static_cast<const int*>(leading->Perm);
+      std::copy(leading_perm, leading_perm + lead, perm.begin());
+      impl_->leading_ordering = leading->ordering;
+      cholmod_free_factor(&leading, &c);
+      a.nrow = a.ncol = static_cast<size_t>(n);
+      a.nzmax = static_cast<size_t>(nnz);
+    }
+    for (int k = lead; k < n; ++k) perm[static_cast<std::size_t>(k)] = k;
+    const int nmethods = c.nmethods, method = c.method[0].ordering, postorder = c.postorder;
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    c.postorder = 0;
+    impl_->factor = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &c);
+    c.nmethods = nmethods;
+    c.method[0].ordering = method;
+    c.postorder = postorder;
+    if (impl_->factor &&
+        !std::equal(perm.begin(), perm.end(), static_cast<const int*>(impl_->factor->Perm))) {
+      throw ConicSetupError("CHOLMOD did not keep the given ordering");
+    }
+  }
   if (!impl_->factor || c.status < CHOLMOD_OK) {
     throw ConicSetupError("CHOLMOD symbolic analysis failed (status " + std::to_string(c.status) +
                           ")");
@@ -230,6 +290,54 @@ void SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
   out = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(impl_->solution->x), impl_->n);
 }
 
+void SparseCholesky::solve_triangular(bool transpose, Eigen::VectorXd& x) {
+  if (impl_->n == 0) return;
+  cholmod_common& c = impl_->common;
+  cholmod_dense b{};
+  b.nrow = static_cast<size_t>(impl_->n);
+  b.ncol = 1;
+  b.nzmax = b.nrow;
+  b.d = b.nrow;
+  b.x = x.data();
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_solve2(transpose ? CHOLMOD_Lt : CHOLMOD_L, impl_->factor, &b, nullptr, &impl_->solution,
+                 nullptr, &impl_->work_y, &impl_->work_e, &c);
+  x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(impl_->solution->x), impl_->n);
+}
+
+const int* SparseCholesky::permutation() const {
+  return impl_->factor ? static_cast<const int*>(impl_->factor->Perm) : nullptr;
+}
+
+void SparseCholesky::trailing_factor(double* out) const {
+  const int t = impl_->trailing, lead = impl_->n - t;
+  std::fill(out, out + static_cast<std::size_t>(t) * static_cast<std::size_t>(t), 0.0);
+  if (t == 0) return;
+  const cholmod_factor* L = impl_->factor;
+  const int* super = static_cast<const int*>(L->super);
+  const int* pi = static_cast<const int*>(L->pi);
+  const int* px = static_cast<const int*>(L->px);
+  const int* row = static_cast<const int*>(L->s);
+  const double* x = static_cast<const double*>(L->x);
+  // Supernode s holds columns super[s] … super[s+1]−1 as a dense block of pi[s+1]−pi[s] rows
+  // (row indices s[pi[s]…]), column-major from x[px[s]] (cholmod_factor.h). Columns from
+  // `lead` on have only rows from `lead` on.
+  for (std::size_t s = L->nsuper; s-- > 0;) {
+    const int first = super[s], end = super[s + 1];
+    if (end <= lead) break;
+    const int rows = pi[s + 1] - pi[s];
+    for (int k = std::max(first, lead); k < end; ++k) {
+      const double* column = x + px[s] + static_cast<std::ptrdiff_t>(k - first) * rows;
+      for (int r = k - first; r < rows; ++r) {
+        const int i = row[pi[s] + r];
+        out[static_cast<std::size_t>(i - lead) +
+            static_cast<std::size_t>(k - lead) * static_cast<std::size_t>(t)] = column[r];
+      }
+    }
+  }
+}
+
 double SparseCholesky::factor_bytes() const {
   const cholmod_factor* L = impl_->factor;
   if (!L) return 0.0;
@@ -249,9 +357,11 @@ long SparseCholesky::factor_nonzeros() const {
 
 std::string SparseCholesky::backend_name() const {
   std::string ordering = to_string(impl_->ordering);
-  if (impl_->ordering == Ordering::Best && impl_->factor)
-    ordering = impl_->factor->ordering == CHOLMOD_METIS ? "METIS, best of AMD and METIS"
-                                                        : "AMD, best of AMD and METIS";
+  if (impl_->ordering == Ordering::Best && impl_->factor) {
+    const int chosen = impl_->trailing > 0 ? impl_->leading_ordering : impl_->factor->ordering;
+    ordering = chosen == CHOLMOD_METIS ? "METIS, best of AMD and METIS"
+                                       : "AMD, best of AMD and METIS";
+  }
   return std::string("CHOLMOD supernodal LL' (") + ordering + ")";
 }
 

@@ -40,13 +40,24 @@ class SparseCholesky {
   SparseCholesky& operator=(const SparseCholesky&) = delete;
 
   /// Pattern of the lower triangle, sorted row indices per column; the arrays must stay alive
-  /// (and unchanged) while this object is used.
-  void analyze(int n, const int* col_ptr, const int* row_ind);
+  /// (and unchanged) while this object is used. trailing > 0 keeps the last `trailing` rows
+  /// last, in their order: the fill-reducing ordering is computed for the leading block alone,
+  /// so the factor's last columns hold the Cholesky factor of the Schur complement of that
+  /// block (used by SplitCholesky).
+  void analyze(int n, const int* col_ptr, const int* row_ind, int trailing = 0);
   /// Factors (M + shift·I) with M's lower-triangle values in the pattern's order. False if
   /// CHOLMOD reports that the matrix is not positive definite (the caller then retries).
   bool factorize(const double* values, double shift);
   /// out = (M + shift·I)⁻¹ rhs with the last successful factor.
   void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
+  /// x ← L⁻¹ x (transpose false) or L⁻ᵀ x (true), L the factor of P (M + shift·I) Pᵀ: x is in
+  /// the permuted order, no permutation is applied.
+  void solve_triangular(bool transpose, Eigen::VectorXd& x);
+  /// P as a list: row k of the permuted matrix is row permutation()[k] of M.
+  const int* permutation() const;
+  /// The last t columns of L (t = trailing of analyze()) as a dense t×t lower triangle,
+  /// column-major; the entries above the diagonal are zero.
+  void trailing_factor(double* out) const;
 
   long factor_nonzeros() const;
   /// Bytes of the numeric factor (values and supernode indices), known after analyze().

@@ -108,6 +108,12 @@ struct Settings {
   /// time in the whole solve (idle threads spinning). One thread also makes runs repeatable:
   /// with two, the blocked sums' order varied and so did the iteration count (48 or 52).
   int blas_threads = 1;
+  /// Threads for the normal equations, 1 or 2 (read at construction). With 2, a normal matrix
+  /// of at least split_min_rows rows is split by a node separator into two domains that are
+  /// factored and solved concurrently (detail::SplitCholesky); below that size, or when the
+  /// split is unbalanced or its separator large, one factor on one thread is used.
+  int threads = 2;
+  int split_min_rows = 4000;
 
   // ---- Dense columns (read at construction) ----
   // A column j of the nonnegative block is dense when
