@@ -193,7 +193,8 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   // equilibrated, so the constant is relative to O(1) entries).
   constexpr double eps = std::numeric_limits<double>::epsilon();
   double shift = reg_static + eps * eps * max_diag;
-  const BlasThreads threads(blas_threads);
+  // Two domains already take both cores: a BLAS team inside each would oversubscribe them.
+  const BlasThreads threads(split_ ? 1 : blas_threads);
   for (int attempt = 0; attempt <= reg_max_retries; ++attempt) {
     const bool factored =
         split_ ? split_->factorize(values_.data(), separator_share_[0].data(),
