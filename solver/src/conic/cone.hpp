@@ -10,6 +10,8 @@
 #include <memory>
 #include <vector>
 
+#include "fork_join.hpp"
+
 namespace rbla::conic::detail {
 
 using Vec = Eigen::VectorXd;
@@ -143,7 +145,10 @@ class SecondOrderCones final : public Cone {
 class ConeSet {
  public:
   ConeSet() = default;
-  ConeSet(Eigen::Index num_nonneg, const std::vector<Eigen::Index>& soc_dims);
+  /// fork_join (may be null): with many second-order cones, half of them are worked on by its
+  /// helper thread.
+  ConeSet(Eigen::Index num_nonneg, const std::vector<Eigen::Index>& soc_dims,
+          ForkJoin* fork_join = nullptr);
   Eigen::Index dim() const { return dim_; }
   Eigen::Index degree() const { return degree_; }
   const std::vector<std::unique_ptr<Cone>>& cones() const { return cones_; }
@@ -164,9 +169,16 @@ class ConeSet {
   void pack_W2(std::vector<double>& out) const;  ///< out must be sized Σ block size²
 
  private:
+  /// f(i) for every cone i, those from split_at_ on by the helper thread when there is one.
+  template <class F>
+  void for_each_cone(const F& f) const;
+
   std::vector<std::unique_ptr<Cone>> cones_;
   Eigen::Index dim_ = 0;
   Eigen::Index degree_ = 0;
+  ForkJoin* fork_join_ = nullptr;  // set only when the cones are split
+  std::size_t split_at_ = 0;       // first cone of the helper's half
+  std::size_t packed_split_ = 0;   // where that half's W² blocks start in pack_W2's output
 };
 
 }  // namespace rbla::conic::detail

@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <limits>
 
@@ -88,6 +89,11 @@ struct ConicSolver::Impl {
   Eigen::SparseMatrix<double> A;  // equilibrated
   Vec b, c;                       // equilibrated
   std::vector<bool> is_dense;
+  // The second thread (Settings::threads), for problems of at least split_min_rows rows: the
+  // split normal matrix, its assembly, the products with A and the cone operations.
+  std::unique_ptr<detail::ForkJoin> fork_join;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> A_rows;  // with fork_join: A by rows
+  Eigen::Index row_split = 0, col_split = 0;            // where the helper's half starts
   std::unique_ptr<detail::NormalEquations> normal;
   // Built on first need: the same normal equations with the dense columns inside the sparse
   // factor, used when the bordered dense-column solve loses accuracy (late iterations).
@@ -105,7 +111,9 @@ struct ConicSolver::Impl {
     messages = settings.validate();
     if (!messages.empty())
       throw ConicSetupError::from_messages("invalid solver settings", messages);
-    cones = detail::ConeSet(problem.cones.num_nonneg, problem.cones.soc_dims);
+    if (settings.threads >= 2 && problem.A.rows() >= settings.split_min_rows)
+      fork_join = std::make_unique<detail::ForkJoin>();
+    cones = detail::ConeSet(problem.cones.num_nonneg, problem.cones.soc_dims, fork_join.get());
     blocks = cones.scaling_blocks();
     std::size_t packed_size = 0;
     for (const auto& blk : blocks) packed_size += static_cast<std::size_t>(blk.size * blk.size);
@@ -114,15 +122,10 @@ struct ConicSolver::Impl {
     rescale();
     const auto symbolic_start = Clock::now();
     normal = std::make_unique<detail::NormalEquations>(A, blocks, is_dense, settings.ordering,
-                                                       split_normal_matrix());
+                                                       fork_join.get());
     symbolic_seconds = seconds_since(symbolic_start);
     check_memory();
     setup_seconds = seconds_since(start);
-  }
-
-  // Whether the normal matrix is worth splitting over two threads (Settings::threads).
-  bool split_normal_matrix() const {
-    return settings.threads >= 2 && A.rows() >= settings.split_min_rows;
   }
 
   // Refuses a factor larger than the memory limit (Settings::memory_limit_bytes) before the
@@ -178,10 +181,63 @@ struct ConicSolver::Impl {
       equilibration = detail::identity_equilibration(problem.A.rows(), problem.A.cols());
     }
     detail::apply_equilibration(equilibration, problem.A, A);
+    if (fork_join) {
+      // Row-major copy for A v by rows; each thread takes rows (or, for Aᵀ v, columns) holding
+      // half of the nonzeros.
+      A_rows = A;
+      const auto half_of = [](const int* outer, Eigen::Index size) {
+        const int half = outer[size] / 2;
+        return static_cast<Eigen::Index>(std::lower_bound(outer, outer + size + 1, half) - outer);
+      };
+      row_split = half_of(A_rows.outerIndexPtr(), A_rows.outerSize());
+      col_split = half_of(A.outerIndexPtr(), A.outerSize());
+    }
     b = equilibration.b_scale * equilibration.row_scale.cwiseProduct(problem.b);
     c = equilibration.c_scale * equilibration.col_scale.cwiseProduct(problem.c);
     if (normal) normal->set_A_values(A);
     if (normal_without_dense) normal_without_dense->set_A_values(A);
+  }
+
+  // out = A v and out = Aᵀ v for the scaled A, on both threads when there are two.
+  void multiply_A(const Vec& v, Vec& out) const {
+    if (!fork_join) {
+      out.noalias() = A * v;
+      return;
+    }
+    out.resize(A.rows());
+    const int* outer = A_rows.outerIndexPtr();
+    const int* inner = A_rows.innerIndexPtr();
+    const double* values = A_rows.valuePtr();
+    auto rows = [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index i = begin; i < end; ++i) {
+        double sum = 0;
+        for (int p = outer[i]; p < outer[i + 1]; ++p) sum += values[p] * v[inner[p]];
+        out[i] = sum;
+      }
+    };
+    const std::function<void()> first = [&] { rows(0, row_split); };
+    const std::function<void()> second = [&] { rows(row_split, A.rows()); };
+    fork_join->run(first, second);
+  }
+  void multiply_At(const Vec& v, Vec& out) const {
+    if (!fork_join) {
+      out.noalias() = A.transpose() * v;
+      return;
+    }
+    out.resize(A.cols());
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+    const double* values = A.valuePtr();
+    auto columns = [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index j = begin; j < end; ++j) {
+        double sum = 0;
+        for (int p = outer[j]; p < outer[j + 1]; ++p) sum += values[p] * v[inner[p]];
+        out[j] = sum;
+      }
+    };
+    const std::function<void()> first = [&] { columns(0, col_split); };
+    const std::function<void()> second = [&] { columns(col_split, A.cols()); };
+    fork_join->run(first, second);
   }
 
   Metrics evaluate(const Vec& x, const Vec& y, const Vec& z, double tau) const {
@@ -401,8 +457,10 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
   int short_steps = 0;
 
   for (int iter = 0;; ++iter) {
-    rp = A * x - b * tau;
-    rd = -(A.transpose() * y) + c * tau - z;
+    multiply_A(x, rp);
+    rp -= b * tau;
+    multiply_At(y, rd);
+    rd = -rd + c * tau - z;
     rg = b.dot(y) - c.dot(x) - kappa;
     const double mu = (x.dot(z) + tau * kappa) / (nu + 1.0);
     metrics = evaluate(x, y, z, tau);
@@ -510,11 +568,13 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
       const auto solve_start = Clock::now();
       // M q = A W² c + b, and the dτ denominator.
       cones.mul_W2(c, W2c);
-      rhs = A * W2c + b;
+      multiply_A(W2c, rhs);
+      rhs += b;
       // q enters every direction (and the dτ denominator), so it is solved tightly.
       refine_steps +=
           ne->solve(rhs, q, s.refine_max_iter, s.refine_tol_rel * (1.0 + inf_norm(rhs)));
-      Atq_c = A.transpose() * q - c;
+      multiply_At(q, Atq_c);
+      Atq_c -= c;
       cones.mul_W2(Atq_c, dxq);
       const double denominator = b.dot(q) - c.dot(dxq) + kappa / tau;
 
@@ -531,7 +591,8 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
         bool corrected = false;
         double previous = std::numeric_limits<double>::infinity();
         for (int pass = 0; pass < s.refine_max_iter; ++pass) {
-          ep = A * out_dx - b * out_dtau + eta * rp;
+          multiply_A(out_dx, ep);
+          ep += eta * rp - b * out_dtau;
           const double eg = b.dot(out_dy) - c.dot(out_dx) - out_dkappa + eta * rg;
           const double error = std::max(inf_norm(ep), std::abs(eg));
           // The plain first correction is not judged by the halving test: when the smallest
@@ -549,7 +610,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
           ep = -ep;
           // First a plain correction (one triangular solve); if that was not enough, CG on M.
           refine_steps += 1 + ne->solve(ep, dp, pass == 0 ? 0 : s.refine_max_iter, refine_target);
-          tmp = A.transpose() * dp;
+          multiply_At(dp, tmp);
           cones.mul_W2(tmp, ddx);
           const double ddtau = (-eg - b.dot(dp) + c.dot(ddx)) / denominator;
           out_dy += dp + q * ddtau;
@@ -558,7 +619,10 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
           out_dkappa = (d_kappa - kappa * out_dtau) / tau;
           corrected = true;
         }
-        if (corrected || !dz_current) out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
+        if (corrected || !dz_current) {
+          multiply_At(out_dy, out_dz);
+          out_dz = -out_dz + c * out_dtau + eta * rd;
+        }
       };
       // Solves the Newton system for (η, d, d_κ); see the header comment. Unrefined (refine =
       // false), the direction has the plain solve's error, about 1e-8 late in a solve.
@@ -568,9 +632,11 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
         cones.mul_Winv(ds_tilde, r1);
         r1 -= eta * rd;
         cones.mul_W2(r1, tmp);
-        rhs = -eta * rp - A * tmp;
+        multiply_A(tmp, rhs);
+        rhs = -eta * rp - rhs;
         refine_steps += ne->solve(rhs, p, 0, refine_target);
-        tmp = A.transpose() * p + r1;
+        multiply_At(p, tmp);
+        tmp += r1;
         cones.mul_W2(tmp, out_dx);
         out_dtau = (-eta * rg - b.dot(p) + c.dot(out_dx) + d_kappa / tau) / denominator;
         out_dy = p + q * out_dtau;
@@ -579,7 +645,8 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
         if (refine) {
           refine_direction(eta, d_kappa, false, out_dx, out_dy, out_dz, out_dtau, out_dkappa);
         } else {
-          out_dz = -(A.transpose() * out_dy) + c * out_dtau + eta * rd;
+          multiply_At(out_dy, out_dz);
+          out_dz = -out_dz + c * out_dtau + eta * rd;
         }
       };
       // Largest step keeping x, z in K and τ, κ ≥ 0, measured in the scaled space around λ.
@@ -671,7 +738,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
         const auto start_symbolic = Clock::now();
         normal_without_dense = std::make_unique<detail::NormalEquations>(
             A, blocks, std::vector<bool>(is_dense.size(), false), s.ordering,
-            split_normal_matrix());
+            fork_join.get());
         info.symbolic_seconds += seconds_since(start_symbolic);
       }
       ne = normal_without_dense.get();

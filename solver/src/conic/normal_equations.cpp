@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "rbla/conic/problem.hpp"
@@ -18,8 +19,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
                                  const std::vector<ScalingBlock>& blocks,
                                  const std::vector<bool>& is_dense_column, Ordering ordering,
-                                 bool split)
-    : m_(A.rows()), cholesky_(ordering) {
+                                 ForkJoin* fork_join)
+    : m_(A.rows()), cholesky_(ordering), fork_join_(fork_join) {
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
   nnz_to_local_.assign(static_cast<std::size_t>(A.nonZeros()), -1);
@@ -106,12 +107,15 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
   for (const BlockData& bd : blocks_) {
     max_scratch = std::max(max_scratch, bd.rows.size() * static_cast<std::size_t>(bd.size));
   }
-  scratch_.assign(max_scratch, 0.0);
+  for (auto& scratch : scratch_) scratch.assign(max_scratch, 0.0);
 
   set_A_values(A);
   ++num_analyses_;
-  if (split) {
-    split_ = std::make_unique<SplitCholesky>(ordering);
+  multiply_split_ = static_cast<Eigen::Index>(
+      std::lower_bound(col_ptr_.begin(), col_ptr_.end(), col_ptr_.back() / 2) - col_ptr_.begin());
+  multiply_split_ = std::min(multiply_split_, m_);
+  if (fork_join_) {
+    split_ = std::make_unique<SplitCholesky>(ordering, *fork_join_);
     if (!split_->analyze(static_cast<int>(m_), col_ptr_.data(), row_ind_.data())) split_.reset();
   }
   if (split_) {
@@ -131,6 +135,16 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
           domain = p;
       }
       if (on_separator) bd.separator_share = static_cast<signed char>(domain);
+    }
+    for (std::size_t k = 0; k < blocks_.size(); ++k) {
+      const BlockData& bd = blocks_[k];
+      if (bd.dense) continue;
+      int domain = 0;
+      for (int row : bd.rows) {
+        const unsigned char p = part[static_cast<std::size_t>(row)];
+        if (p != 2) domain = p;
+      }
+      domain_blocks_[domain].push_back(static_cast<int>(k));
     }
     for (auto& share : separator_share_)
       share.assign(static_cast<std::size_t>(split_->num_separator_slots()), 0.0);
@@ -155,33 +169,23 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   packed_W2_ = packed_W2;
   std::fill(values_.begin(), values_.end(), 0.0);
   for (auto& share : separator_share_) std::fill(share.begin(), share.end(), 0.0);
-  for (const BlockData& bd : blocks_) {
-    if (bd.dense) continue;
-    const std::size_t r = bd.rows.size();
-    const double* Ak = local_A_.data() + bd.a_offset;
-    const int* pos = value_map_.data() + bd.map_offset;
-    if (bd.separator_share >= 0) {
-      add_block_with_share(bd);
-      continue;
-    }
-    if (bd.size == 1) {
-      const double w = packed_W2_[bd.w2_offset];
-      for (std::size_t b = 0; b < r; ++b) {
-        const double wb = w * Ak[b];
-        for (std::size_t a = b; a < r; ++a) values_[static_cast<std::size_t>(*pos++)] += wb * Ak[a];
-      }
-      continue;
-    }
-    // B = A_k W²_k (r×q), then G = B A_kᵀ, lower triangle only.
-    const Eigen::Index rr = static_cast<Eigen::Index>(r);
-    Eigen::Map<const Eigen::MatrixXd> A_local(Ak, rr, bd.size);
-    Eigen::Map<const Eigen::MatrixXd> W2(packed_W2_.data() + bd.w2_offset, bd.size, bd.size);
-    Eigen::Map<Eigen::MatrixXd> B(scratch_.data(), rr, bd.size);
-    B.noalias() = A_local * W2;
-    for (Eigen::Index b = 0; b < rr; ++b) {
-      for (Eigen::Index a = b; a < rr; ++a) {
-        values_[static_cast<std::size_t>(*pos++)] += B.row(a).dot(A_local.row(b));
-      }
+  if (split_) {
+    // Each domain's blocks on their own thread: they write disjoint entries of M, except the
+    // separator–separator ones, which go to their domain's share only and are summed after.
+    const std::function<void()> domain0 = [this] {
+      for (int k : domain_blocks_[0]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[0]);
+    };
+    const std::function<void()> domain1 = [this] {
+      for (int k : domain_blocks_[1]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[1]);
+    };
+    fork_join_->run(domain0, domain1);
+    const std::vector<int>& positions = split_->separator_positions();
+    for (std::size_t slot = 0; slot < positions.size(); ++slot)
+      values_[static_cast<std::size_t>(positions[slot])] =
+          separator_share_[0][slot] + separator_share_[1][slot];
+  } else {
+    for (const BlockData& bd : blocks_) {
+      if (!bd.dense) add_block(bd, scratch_[0]);
     }
   }
   double max_diag = 0;
@@ -238,27 +242,50 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   return report;
 }
 
-void NormalEquations::add_block_with_share(const BlockData& bd) {
-  // As the assembly in factor(), and each term that lands on a separator–separator entry also
-  // goes to the share of the block's domain (the shares must be sums of their own terms: a
-  // difference of M's value and the other share could lose the small one to rounding).
+void NormalEquations::add_block(const BlockData& bd, std::vector<double>& scratch) {
   const std::size_t r = bd.rows.size();
   const double* Ak = local_A_.data() + bd.a_offset;
   const int* pos = value_map_.data() + bd.map_offset;
-  const std::vector<int>& slot_of = split_->separator_slot();
-  std::vector<double>& share = separator_share_[static_cast<std::size_t>(bd.separator_share)];
-  const Eigen::Index rr = static_cast<Eigen::Index>(r);
+  if (bd.separator_share >= 0) {
+    // A block reaching the separator: its separator–separator terms go to its domain's share
+    // alone (summed into M after both domains are assembled; the shares must be sums of their
+    // own terms, as a difference of M's value and the other share could lose the small one).
+    const std::vector<int>& slot_of = split_->separator_slot();
+    std::vector<double>& share = separator_share_[static_cast<std::size_t>(bd.separator_share)];
+    auto add = [&](std::size_t p, double term) {
+      const int slot = slot_of[p];
+      if (slot >= 0)
+        share[static_cast<std::size_t>(slot)] += term;
+      else
+        values_[p] += term;
+    };
+    add_terms(bd, Ak, pos, scratch, add);
+    return;
+  }
+  if (bd.size == 1) {
+    const double w = packed_W2_[bd.w2_offset];
+    for (std::size_t b = 0; b < r; ++b) {
+      const double wb = w * Ak[b];
+      for (std::size_t a = b; a < r; ++a) values_[static_cast<std::size_t>(*pos++)] += wb * Ak[a];
+    }
+    return;
+  }
+  add_terms(bd, Ak, pos, scratch,
+            [this](std::size_t p, double term) { values_[p] += term; });
+}
+
+template <class Add>
+void NormalEquations::add_terms(const BlockData& bd, const double* Ak, const int* pos,
+                                std::vector<double>& scratch, const Add& add) {
+  // B = A_k W²_k (r×q), then G = B A_kᵀ, lower triangle only.
+  const Eigen::Index rr = static_cast<Eigen::Index>(bd.rows.size());
   Eigen::Map<const Eigen::MatrixXd> A_local(Ak, rr, bd.size);
   Eigen::Map<const Eigen::MatrixXd> W2(packed_W2_.data() + bd.w2_offset, bd.size, bd.size);
-  Eigen::Map<Eigen::MatrixXd> B(scratch_.data(), rr, bd.size);
+  Eigen::Map<Eigen::MatrixXd> B(scratch.data(), rr, bd.size);
   B.noalias() = A_local * W2;
   for (Eigen::Index b = 0; b < rr; ++b) {
     for (Eigen::Index a = b; a < rr; ++a) {
-      const double term = B.row(a).dot(A_local.row(b));
-      const std::size_t p = static_cast<std::size_t>(*pos++);
-      values_[p] += term;
-      const int slot = slot_of[p];
-      if (slot >= 0) share[static_cast<std::size_t>(slot)] += term;
+      add(static_cast<std::size_t>(*pos++), B.row(a).dot(A_local.row(b)));
     }
   }
 }
@@ -298,20 +325,31 @@ void NormalEquations::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) c
   // step. Per block through A_k instead, this was 10 % of an 8051-block 3-D solve: every block
   // re-gathers the rows it touches, M's lower triangle visits each entry once.
   ++num_multiplies_;
-  out.setZero(m_);
   const int* col_ptr = col_ptr_.data();
   const int* row_ind = row_ind_.data();
   const double* values = values_.data();
-  for (Eigen::Index j = 0; j < m_; ++j) {
-    const int begin = col_ptr[j], end = col_ptr[j + 1];
-    const double vj = v[j];
-    double sum = values[begin] * vj;  // the diagonal comes first in each column
-    for (int p = begin + 1; p < end; ++p) {
-      const int i = row_ind[p];
-      sum += values[p] * v[i];
-      out[i] += values[p] * vj;
+  auto columns = [&](Eigen::Index begin, Eigen::Index end, Eigen::VectorXd& into) {
+    into.setZero(m_);
+    for (Eigen::Index j = begin; j < end; ++j) {
+      const int first = col_ptr[j], last = col_ptr[j + 1];
+      const double vj = v[j];
+      double sum = values[first] * vj;  // the diagonal comes first in each column
+      for (int p = first + 1; p < last; ++p) {
+        const int i = row_ind[p];
+        sum += values[p] * v[i];
+        into[i] += values[p] * vj;
+      }
+      into[j] += sum;
     }
-    out[j] += sum;
+  };
+  if (fork_join_) {
+    // Half of the entries per thread, each scattering into its own vector.
+    const std::function<void()> first = [&] { columns(0, multiply_split_, out); };
+    const std::function<void()> second = [&] { columns(multiply_split_, m_, multiply_other_); };
+    fork_join_->run(first, second);
+    out += multiply_other_;
+  } else {
+    columns(0, m_, out);
   }
   for (int index : dense_blocks_) {
     const BlockData& bd = blocks_[static_cast<std::size_t>(index)];

@@ -13,8 +13,9 @@
 // ⇒ (Dᵀ M_s⁻¹ D + diag(1/d)) w = Dᵀ M_s⁻¹ r,  dy = M_s⁻¹ (r − D w)   (Schur complement, k×k).
 // This form stays well defined when d → 0 or d → ∞ (unlike Sherman–Morrison–Woodbury in d).
 //
-// M_s is factored as M_s + δI, by one CHOLMOD factor or, with `split`, by SplitCholesky on two
-// threads (then each block also adds its separator–separator terms to its domain's share); (δ = static regularisation, raised on failure); each solve is
+// M_s is factored as M_s + δI, by one CHOLMOD factor or by SplitCholesky on two threads (then
+// each domain's blocks are assembled on their own thread, their separator–separator terms into
+// their domain's share); (δ = static regularisation, raised on failure); each solve is
 // then refined by preconditioned CG on the exact, unregularised M (applied as A (W² (Aᵀ v)),
 // never formed). When M_s becomes nearly singular (the dense column carries directions nothing
 // else does), M_s⁻¹D blows up and the bordered solve loses accuracy; the caller detects that
@@ -42,9 +43,11 @@ struct FactorReport {
 
 class NormalEquations {
  public:
-  /// split: try SplitCholesky (two domains on two threads); one factor if it declines.
+  /// fork_join (may be null: one thread): try SplitCholesky on its two threads, and assemble
+  /// the two domains concurrently; one factor if the split declines.
   NormalEquations(const Eigen::SparseMatrix<double>& A, const std::vector<ScalingBlock>& blocks,
-                  const std::vector<bool>& is_dense_column, Ordering ordering, bool split);
+                  const std::vector<bool>& is_dense_column, Ordering ordering,
+                  ForkJoin* fork_join);
 
   /// New values of A with the same pattern (the symbolic factorisation is kept).
   void set_A_values(const Eigen::SparseMatrix<double>& A);
@@ -87,7 +90,11 @@ class NormalEquations {
     bool dense = false;
     signed char separator_share = -1;  // SplitCholesky domain whose share gets its SS terms
   };
-  void add_block_with_share(const BlockData& bd);
+  /// Adds block bd's terms A_k W²_k A_kᵀ to M (or to its domain's separator share).
+  void add_block(const BlockData& bd, std::vector<double>& scratch);
+  template <class Add>
+  void add_terms(const BlockData& bd, const double* Ak, const int* pos,
+                 std::vector<double>& scratch, const Add& add);
 
   Eigen::Index m_ = 0;
   std::vector<BlockData> blocks_;
@@ -99,9 +106,13 @@ class NormalEquations {
   std::vector<int> diag_pos_;
   std::vector<double> values_;
   std::vector<double> packed_W2_;  // copy from the last factor() (for multiply)
-  std::vector<double> scratch_;
+  Eigen::Index multiply_split_ = 0;           // with fork_join_: the helper's first column
+  mutable Eigen::VectorXd multiply_other_;    // and its share of the product
+  std::vector<double> scratch_[2];  // one per thread
   SparseCholesky cholesky_;
+  ForkJoin* fork_join_ = nullptr;
   std::unique_ptr<SplitCholesky> split_;  // in use instead of cholesky_ when set
+  std::vector<int> domain_blocks_[2];     // with split_: the (non-dense) blocks of each domain
   std::vector<double> separator_share_[2];
   int num_analyses_ = 0;
   double shift_ = 0;

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "fork_join.hpp"
 #include "rbla/conic/settings.hpp"
 #include "sparse_cholesky.hpp"
 
@@ -31,7 +32,8 @@ namespace rbla::conic::detail {
 
 class SplitCholesky {
  public:
-  explicit SplitCholesky(Ordering ordering);
+  /// The domains run on the calling thread and fork_join's helper.
+  SplitCholesky(Ordering ordering, ForkJoin& fork_join);
   ~SplitCholesky();
   SplitCholesky(const SplitCholesky&) = delete;
   SplitCholesky& operator=(const SplitCholesky&) = delete;
@@ -50,6 +52,8 @@ class SplitCholesky {
   /// or −1 when p is not such an entry.
   const std::vector<int>& separator_slot() const { return slot_of_position_; }
   int num_separator_slots() const { return num_slots_; }
+  /// The inverse: the position in M's lower triangle of each slot.
+  const std::vector<int>& separator_positions() const { return position_of_slot_; }
 
   /// Factors M + shift·I. values: M's lower triangle in the pattern's order; share0/share1: per
   /// separator slot, the parts of those entries that terms of domain 0 and 1 contribute (their
@@ -67,18 +71,17 @@ class SplitCholesky {
 
  private:
   struct Domain;
-  class Helper;
   double separator_diagonal(const double* values, int j) const;
   std::vector<unsigned char> part_;
   std::vector<int> separator_rows_;
-  std::vector<int> slot_of_position_;
+  std::vector<int> slot_of_position_, position_of_slot_;
   int num_slots_ = 0;
   int n_ = 0;
   const int* m_col_ptr_ = nullptr;  // M's pattern (the caller's)
   std::unique_ptr<Domain> domains_[2];
   Eigen::MatrixXd separator_factor_;  // Lₛ (lower triangle)
   Eigen::VectorXd separator_rhs_;
-  std::unique_ptr<Helper> helper_;
+  ForkJoin& fork_join_;
   Ordering ordering_;
 };
 

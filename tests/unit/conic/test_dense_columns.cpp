@@ -110,7 +110,7 @@ TEST(ConicNormalEquations, ProductEqualsTheExplicitNormalMatrix) {
   A.setFromTriplets(triplets.begin(), triplets.end());
   std::vector<bool> is_dense(static_cast<std::size_t>(n), false);
   is_dense[0] = true;
-  NormalEquations normal_equations(A, blocks, is_dense, rbla::conic::Ordering::Amd, false);
+  NormalEquations normal_equations(A, blocks, is_dense, rbla::conic::Ordering::Amd, nullptr);
   ASSERT_EQ(normal_equations.num_dense_columns(), 1);
 
   Eigen::MatrixXd W2 = Eigen::MatrixXd::Zero(n, n);

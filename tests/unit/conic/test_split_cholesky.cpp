@@ -3,7 +3,9 @@
 // reach the same optimum with it.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
+#include <stdexcept>
 
 #include "../../../solver/src/conic/normal_equations.hpp"
 #include "rbla/conic/solver.hpp"
@@ -12,6 +14,7 @@
 
 using namespace rbla::conic;
 using namespace rbla::conic::testing;
+using rbla::conic::detail::ForkJoin;
 using rbla::conic::detail::NormalEquations;
 using rbla::conic::detail::ScalingBlock;
 
@@ -69,8 +72,9 @@ TEST(ConicSplitCholesky, SolvesWhatOneFactorSolves) {
   for (const double decades : {0.0, 4.0}) {
     const NormalCase c = wall_normal_case(14, 18, decades, 7);
     const std::vector<bool> no_dense(static_cast<std::size_t>(c.A.cols()), false);
-    NormalEquations one(c.A, c.blocks, no_dense, Ordering::Best, false);
-    NormalEquations split(c.A, c.blocks, no_dense, Ordering::Best, true);
+    ForkJoin fork_join;
+    NormalEquations one(c.A, c.blocks, no_dense, Ordering::Best, nullptr);
+    NormalEquations split(c.A, c.blocks, no_dense, Ordering::Best, &fork_join);
     ASSERT_FALSE(one.is_split());
     ASSERT_TRUE(split.is_split()) << "a wall's normal matrix has a small balanced separator";
     EXPECT_NE(split.backend_name().find("two domains"), std::string::npos);
@@ -109,7 +113,9 @@ TEST(ConicSplitCholesky, DeclinesWhereNoSmallBalancedSeparatorExists) {
   A.setFromTriplets(triplets.begin(), triplets.end());
   std::vector<ScalingBlock> blocks;
   for (int j = 0; j < cols; ++j) blocks.push_back({j, 1});
-  NormalEquations normal_equations(A, blocks, std::vector<bool>(cols, false), Ordering::Amd, true);
+  ForkJoin fork_join;
+  NormalEquations normal_equations(A, blocks, std::vector<bool>(cols, false), Ordering::Amd,
+                                   &fork_join);
   EXPECT_FALSE(normal_equations.is_split());
   ASSERT_TRUE(normal_equations.factor(std::vector<double>(cols, 1.0), 1e-10, 100.0, 8).ok);
 }
@@ -155,4 +161,25 @@ TEST(ConicSplitCholesky, CertificatesOnTwoThreads) {
   EXPECT_NE(s.info.backend.find("two domains"), std::string::npos) << s.info.backend;
   ASSERT_EQ(s.info.status, SolveStatus::PrimalInfeasible) << s.info.brief_report();
   EXPECT_LT(primal_certificate_error(wall.problem, s.y), 1e-7);
+}
+
+TEST(ConicForkJoin, RunsBothHalvesAndPassesOnExceptions) {
+  ForkJoin fork_join;
+  std::vector<int> seen(1000, 0);
+  for (int round = 0; round < 50; ++round) {
+    fork_join.for_halves(1000, 1, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+      for (std::ptrdiff_t i = begin; i < end; ++i) ++seen[static_cast<std::size_t>(i)];
+    });
+  }
+  for (int count : seen) EXPECT_EQ(count, 50);
+  const std::function<void()> fine = [] {};
+  const std::function<void()> throws = [] { throw std::runtime_error("helper side"); };
+  EXPECT_THROW(fork_join.run(fine, throws), std::runtime_error);
+  EXPECT_THROW(fork_join.run(throws, fine), std::runtime_error);
+  // Still usable afterwards.
+  int calls = 0;
+  const std::function<void()> count_call = [&calls] { ++calls; };
+  const std::function<void()> nothing = [] {};
+  fork_join.run(count_call, nothing);
+  EXPECT_EQ(calls, 1);
 }
