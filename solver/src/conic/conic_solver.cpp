@@ -240,7 +240,9 @@ struct ConicSolver::Impl {
     fork_join->run(first, second);
   }
 
-  Metrics evaluate(const Vec& x, const Vec& y, const Vec& z, double tau) const {
+  // scaled_Ax, scaled_Aty: Ã x and Ãᵀ y when the caller has them (only used with fork_join).
+  Metrics evaluate(const Vec& x, const Vec& y, const Vec& z, double tau,
+                   const Vec* scaled_Ax = nullptr, const Vec* scaled_Aty = nullptr) const {
     const auto& eq = equilibration;
     Metrics r;
     const Vec x_hat = eq.col_scale.cwiseProduct(x);  // ∝ x, original units up to 1/(s_b τ)
@@ -257,21 +259,40 @@ struct ConicSolver::Impl {
     r.gap_abs = std::max(std::abs(r.primal_objective - r.dual_objective), std::abs(r.x.dot(r.z)));
     r.gap_rel = r.gap_abs /
                 std::max(1.0, std::min(std::abs(r.primal_objective), std::abs(r.dual_objective)));
-    const Vec Ax = P.A * r.x;
+    Vec Ax, Aty;
+    if (fork_join) {
+      // Through the scaled matrix on both threads: A = D⁻¹ Ã E⁻¹ (equilibration.hpp), so
+      // A x_orig = D⁻¹ Ã x / (s_b τ) and Aᵀ y_orig = E⁻¹ Ãᵀ y / (s_c τ); the certificates'
+      // products are these rescaled.
+      if (scaled_Ax)
+        Ax = *scaled_Ax;
+      else
+        multiply_A(x, Ax);
+      Ax = Ax.cwiseQuotient(eq.row_scale) / (eq.b_scale * tau);
+      if (scaled_Aty)
+        Aty = *scaled_Aty;
+      else
+        multiply_At(y, Aty);
+      Aty = Aty.cwiseQuotient(eq.col_scale) / (eq.c_scale * tau);
+    } else {
+      Ax = P.A * r.x;
+      Aty = P.A.transpose() * r.y;
+    }
     r.res_primal = inf_norm(Ax - P.b) / std::max(1.0, inf_norm(P.b) + inf_norm(r.x));
-    const Vec Aty = P.A.transpose() * r.y;
     r.res_dual =
         inf_norm(Aty + r.z - P.c) / std::max(1.0, inf_norm(P.c) + inf_norm(r.y) + inf_norm(r.z));
     const double bty = P.b.dot(y_hat);
     if (bty > 0) {
       r.y_cert = y_hat / bty;
       r.z_cert = z_hat / bty;
-      r.primal_cert = inf_norm(P.A.transpose() * r.y_cert + r.z_cert);
+      r.primal_cert = fork_join ? inf_norm(Aty * (eq.c_scale * tau / bty) + r.z_cert)
+                                : inf_norm(P.A.transpose() * r.y_cert + r.z_cert);
     }
     const double ctx = P.c.dot(x_hat);
     if (ctx < 0) {
       r.x_cert = x_hat / (-ctx);
-      r.dual_cert = inf_norm(P.A * r.x_cert);
+      r.dual_cert = fork_join ? inf_norm(Ax * (eq.b_scale * tau / -ctx))
+                              : inf_norm(P.A * r.x_cert);
     }
     return r;
   }
@@ -440,6 +461,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
   if (!info.warm_started && s.least_squares_start && allow_least_squares_start)
     info.least_squares_start = least_squares_start(ne, factor_threads, e, x, y, z, info);
   Vec rp, rd, lambda, W2c, Atq_c, dxq, q, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
+  Vec scaled_Ax, scaled_Aty;  // Ã x and Ãᵀ y of the current iterate (residuals, evaluate())
   Vec dx_a, dy_a, dz_a, dx, dy, dz, scaled_dx, scaled_dz, lambda_sq, corr, ep, dp, ddx;
   Vec trial_s, trial_z, trial_v, ds_c, cdx, cdy, cdz;
   double rg = 0;
@@ -457,13 +479,13 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
   int short_steps = 0;
 
   for (int iter = 0;; ++iter) {
-    multiply_A(x, rp);
-    rp -= b * tau;
-    multiply_At(y, rd);
-    rd = -rd + c * tau - z;
+    multiply_A(x, scaled_Ax);
+    rp = scaled_Ax - b * tau;
+    multiply_At(y, scaled_Aty);
+    rd = -scaled_Aty + c * tau - z;
     rg = b.dot(y) - c.dot(x) - kappa;
     const double mu = (x.dot(z) + tau * kappa) / (nu + 1.0);
-    metrics = evaluate(x, y, z, tau);
+    metrics = evaluate(x, y, z, tau, &scaled_Ax, &scaled_Aty);
     const double refine_target = direction_accuracy(rp, y, tau, metrics);
     // Late iterations of degenerate problems can lose accuracy; the best iterate is kept for the
     // reduced-accuracy fallback.
