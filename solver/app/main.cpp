@@ -39,6 +39,7 @@ struct CommonOptions {
   std::string dump_problem_path;
   bool quiet = false;
   bool verbose = false;
+  int threads = 2;
 };
 
 void progress(const CommonOptions& options, const std::string& line) {
@@ -153,6 +154,7 @@ int run_solve(const CommonOptions& options) {
   rbla::analysis::AnalysisOptions analysis_options;
   analysis_options.log = options.verbose ? &std::cerr : nullptr;
   analysis_options.dump_problem_path = options.dump_problem_path;
+  analysis_options.threads = options.threads;
   progress(options, std::string("analysis: ") + rbla::model::to_string(m.analysis.type) + ", " +
                         rbla::model::to_string(m.analysis.friction_model) + " friction, cone " +
                         rbla::model::to_string(m.analysis.cone));
@@ -224,6 +226,9 @@ int main(int argc, char** argv) {
                     "Write the conic problem for other solvers: CBF, or free MPS when the name ends in .mps (LP only)");
   solve->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
   solve->add_flag("-v,--verbose", options.verbose, "Interior-point iteration log on standard error");
+  solve->add_option("--threads", options.threads,
+                    "Threads per conic solve: 2 (default) splits large problems over two cores, 1 keeps to one")
+      ->check(CLI::Range(1, 2));
 
   CLI::App* validate = app.add_subcommand("validate", "Check a model against the schema and its geometry");
   validate->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();

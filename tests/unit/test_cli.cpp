@@ -151,3 +151,16 @@ TEST_F(Cli, UnwritableProblemDumpIsAMessageNotACrash) {
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("rbla: "), std::string::npos) << r.output;
 }
+
+TEST_F(Cli, ThreadsOptionTakesOneOrTwo) {
+  const std::string model = write("m.json", box_model());
+  for (const char* threads : {"1", "2"}) {
+    const auto r = run("solve " + model + " --threads " + threads + " -o " + path("r.json"));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("Collapse at load multiplier alpha = 0.5"), std::string::npos) << r.output;
+  }
+  const auto r = run("solve -q " + model + " --threads 3 -o " + path("r3.json"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("--threads"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("r3.json")));
+}

@@ -125,6 +125,7 @@ conic::Settings solver_settings(const model::AnalysisRequest& request, const Ana
   settings.time_limit_seconds = std::max(time_left, 1e-6);
   settings.verbose = options.log != nullptr;
   settings.log_stream = options.log;
+  settings.threads = options.threads;
   return settings;
 }
 

@@ -19,6 +19,8 @@ struct AnalysisOptions {
   /// When not empty, the first conic problem is written there: CBF (any problem) or, for a
   /// linear program and a path ending in ".mps", free MPS. See rbla/conic/io.hpp.
   std::string dump_problem_path;
+  /// Threads of each conic solve, 1 or 2 (conic::Settings::threads).
+  int threads = 2;
 };
 
 /// Runs the analysis the model requests (model.analysis). Throws model::ModelError only for
