@@ -198,45 +198,40 @@ struct ConicSolver::Impl {
     if (normal_without_dense) normal_without_dense->set_A_values(A);
   }
 
-  // out = A v and out = Aᵀ v for the scaled A, on both threads when there are two.
+  // out = A v and out = Aᵀ v for the scaled A, on both threads when there are two: A v by the
+  // rows of A_rows, Aᵀ v by the columns of A, both one dot product per compressed vector.
   void multiply_A(const Vec& v, Vec& out) const {
     if (!fork_join) {
       out.noalias() = A * v;
       return;
     }
-    out.resize(A.rows());
-    const int* outer = A_rows.outerIndexPtr();
-    const int* inner = A_rows.innerIndexPtr();
-    const double* values = A_rows.valuePtr();
-    auto rows = [&](Eigen::Index begin, Eigen::Index end) {
-      for (Eigen::Index i = begin; i < end; ++i) {
-        double sum = 0;
-        for (int p = outer[i]; p < outer[i + 1]; ++p) sum += values[p] * v[inner[p]];
-        out[i] = sum;
-      }
-    };
-    const std::function<void()> first = [&] { rows(0, row_split); };
-    const std::function<void()> second = [&] { rows(row_split, A.rows()); };
-    fork_join->run(first, second);
+    dot_each_vector(A_rows, row_split, v, out);
   }
   void multiply_At(const Vec& v, Vec& out) const {
     if (!fork_join) {
       out.noalias() = A.transpose() * v;
       return;
     }
-    out.resize(A.cols());
-    const int* outer = A.outerIndexPtr();
-    const int* inner = A.innerIndexPtr();
-    const double* values = A.valuePtr();
-    auto columns = [&](Eigen::Index begin, Eigen::Index end) {
-      for (Eigen::Index j = begin; j < end; ++j) {
+    dot_each_vector(A, col_split, v, out);
+  }
+  // out[k] = (compressed vector k of S) · v, vectors [0, split) on this thread, the rest on the
+  // helper's.
+  template <class Sparse>
+  void dot_each_vector(const Sparse& S, Eigen::Index split, const Vec& v, Vec& out) const {
+    const Eigen::Index count = S.outerSize();
+    out.resize(count);
+    const int* outer = S.outerIndexPtr();
+    const int* inner = S.innerIndexPtr();
+    const double* values = S.valuePtr();
+    auto range = [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index k = begin; k < end; ++k) {
         double sum = 0;
-        for (int p = outer[j]; p < outer[j + 1]; ++p) sum += values[p] * v[inner[p]];
-        out[j] = sum;
+        for (int p = outer[k]; p < outer[k + 1]; ++p) sum += values[p] * v[inner[p]];
+        out[k] = sum;
       }
     };
-    const std::function<void()> first = [&] { columns(0, col_split); };
-    const std::function<void()> second = [&] { columns(col_split, A.cols()); };
+    const std::function<void()> first = [&] { range(0, split); };
+    const std::function<void()> second = [&] { range(split, count); };
     fork_join->run(first, second);
   }
 

@@ -276,34 +276,26 @@ void SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
     out.resize(0);
     return;
   }
-  cholmod_common& c = impl_->common;
-  cholmod_dense b{};
-  b.nrow = static_cast<size_t>(impl_->n);
-  b.ncol = 1;
-  b.nzmax = b.nrow;
-  b.d = b.nrow;
-  b.x = const_cast<double*>(rhs.data());
-  b.xtype = CHOLMOD_REAL;
-  b.dtype = CHOLMOD_DOUBLE;
-  cholmod_solve2(CHOLMOD_A, impl_->factor, &b, nullptr, &impl_->solution, nullptr, &impl_->work_y,
-                 &impl_->work_e, &c);
-  out = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(impl_->solution->x), impl_->n);
+  solve_system(CHOLMOD_A, rhs.data(), out);
 }
 
 void SparseCholesky::solve_triangular(bool transpose, Eigen::VectorXd& x) {
   if (impl_->n == 0) return;
-  cholmod_common& c = impl_->common;
+  solve_system(transpose ? CHOLMOD_Lt : CHOLMOD_L, x.data(), x);
+}
+
+void SparseCholesky::solve_system(int system, const double* rhs, Eigen::VectorXd& out) {
   cholmod_dense b{};
   b.nrow = static_cast<size_t>(impl_->n);
   b.ncol = 1;
   b.nzmax = b.nrow;
   b.d = b.nrow;
-  b.x = x.data();
+  b.x = const_cast<double*>(rhs);
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
-  cholmod_solve2(transpose ? CHOLMOD_Lt : CHOLMOD_L, impl_->factor, &b, nullptr, &impl_->solution,
-                 nullptr, &impl_->work_y, &impl_->work_e, &c);
-  x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(impl_->solution->x), impl_->n);
+  cholmod_solve2(system, impl_->factor, &b, nullptr, &impl_->solution, nullptr, &impl_->work_y,
+                 &impl_->work_e, &impl_->common);
+  out = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(impl_->solution->x), impl_->n);
 }
 
 const int* SparseCholesky::permutation() const {

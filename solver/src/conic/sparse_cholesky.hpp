@@ -68,6 +68,9 @@ class SparseCholesky {
   int num_analyses() const { return num_analyses_; }
 
  private:
+  /// out = the solution of CHOLMOD's system `system` (CHOLMOD_A, _L, _Lt) for rhs (n values).
+  void solve_system(int system, const double* rhs, Eigen::VectorXd& out);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int num_analyses_ = 0;

@@ -8,11 +8,12 @@
 // Mₛₛ is split into the parts the caller's two groups of terms contribute, Mₛₛ = Hₛ⁽⁰⁾ + Hₛ⁽¹⁾
 // (for M = Σ_k A_k W_k² A_kᵀ each term touches one domain, or the separator only), and domain d
 // factors its own positive definite matrix with the separator last,
-//   K_d = [M_dd M_dₛ; Mₛ_d Hₛ⁽ᵈ⁾ + (δ/2)I] = [L_d 0; B_d T_d][L_d 0; B_d T_d]ᵀ,
-// by CHOLMOD, concurrently. With δ the shift of M, T₀T₀ᵀ + T₁T₁ᵀ = Mₛₛ + δI − Σ_d B_d B_dᵀ is the
-// Schur complement of the separator in M + δI, factored densely (LAPACK) as Lₛ Lₛᵀ; the blocks
-// L_d, B_d and Lₛ are those of the Cholesky factor of M + δI in this ordering, so the solves are
-// those of that factor, the two domains' triangular solves running concurrently:
+//   K_d = [M_dd M_dₛ; Mₛ_d Hₛ⁽ᵈ⁾ + (δ/2)I + D] = [L_d 0; B_d T_d][L_d 0; B_d T_d]ᵀ,
+// by CHOLMOD, concurrently (D = diag Mₛₛ keeps K_d safely definite; it is taken off below). With
+// δ the shift of M, T₀T₀ᵀ + T₁T₁ᵀ − 2D = Mₛₛ + δI − Σ_d B_d B_dᵀ is the Schur complement of the
+// separator in M + δI, factored densely (LAPACK) as Lₛ Lₛᵀ; the blocks L_d, B_d and Lₛ are those
+// of the Cholesky factor of M + δI in this ordering, so the solves are those of that factor,
+// the two domains' triangular solves running concurrently:
 //   forward:  [y_d; w_d] = K_d-factor⁻¹ [b_d; 0]      ⇒ B_d y_d = −T_d w_d
 //             xₛ = (Lₛ Lₛᵀ)⁻¹ (bₛ + T₀w₀ + T₁w₁)
 //   backward: [x_d; xₛ] = K_d-factor⁻ᵀ [y_d; T_dᵀ xₛ]  ⇒ x_d = L_d⁻ᵀ (y_d − B_dᵀ xₛ).
