@@ -123,7 +123,8 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
     // on the separator alone counts for domain 0. Only blocks that reach the separator add to a
     // share.
     const auto& part = split_->part_of_row();
-    for (BlockData& bd : blocks_) {
+    for (std::size_t k = 0; k < blocks_.size(); ++k) {
+      BlockData& bd = blocks_[k];
       if (bd.dense) continue;
       int domain = 0;
       bool on_separator = false;
@@ -135,15 +136,6 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
           domain = p;
       }
       if (on_separator) bd.separator_share = static_cast<signed char>(domain);
-    }
-    for (std::size_t k = 0; k < blocks_.size(); ++k) {
-      const BlockData& bd = blocks_[k];
-      if (bd.dense) continue;
-      int domain = 0;
-      for (int row : bd.rows) {
-        const unsigned char p = part[static_cast<std::size_t>(row)];
-        if (p != 2) domain = p;
-      }
       domain_blocks_[domain].push_back(static_cast<int>(k));
     }
     for (auto& share : separator_share_)
