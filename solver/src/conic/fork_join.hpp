@@ -4,7 +4,6 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
-#include <cstddef>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -14,10 +13,10 @@ namespace rbla::conic::detail {
 
 /// One helper thread that runs a task while the calling thread runs another (a fork–join of
 /// two), for the solver's two-thread parts: the split normal matrix (SplitCholesky), the
-/// products with A and the cone operations. Kept for the object's lifetime: a thread per call
-/// would cost more than the call at small sizes. Either side spins briefly before it sleeps on a condition variable: waking a
-/// sleeping thread took about 0.15 ms on this project's virtual machines, half of a whole
-/// triangular solve at 1920 blocks.
+/// products with A and M, the cone operations and the assembly. Kept for the object's lifetime:
+/// a thread per call would cost more than the call at small sizes. Either side spins briefly
+/// before it sleeps on a condition variable: waking a sleeping thread took about 0.15 ms on
+/// this project's virtual machines, half of a whole triangular solve at 1920 blocks.
 class ForkJoin {
  public:
   ForkJoin() : thread_([this] { loop(); }) {}
@@ -31,20 +30,6 @@ class ForkJoin {
   }
   ForkJoin(const ForkJoin&) = delete;
   ForkJoin& operator=(const ForkJoin&) = delete;
-
-  /// f(begin, end) over [0, n) in two halves, one per thread; inline below `grain` items, where
-  /// the hand-over would cost more than the work.
-  template <class F>
-  void for_halves(std::ptrdiff_t n, std::ptrdiff_t grain, const F& f) {
-    if (n < grain) {
-      f(std::ptrdiff_t{0}, n);
-      return;
-    }
-    const std::ptrdiff_t half = n / 2;
-    const std::function<void()> first = [&] { f(std::ptrdiff_t{0}, half); };
-    const std::function<void()> second = [&] { f(half, n); };
-    run(first, second);
-  }
 
   /// Runs there() on the helper thread and here() on this one; returns when both have
   /// finished, rethrowing an exception of either.

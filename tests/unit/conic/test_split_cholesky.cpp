@@ -166,11 +166,12 @@ TEST(ConicSplitCholesky, CertificatesOnTwoThreads) {
 TEST(ConicForkJoin, RunsBothHalvesAndPassesOnExceptions) {
   ForkJoin fork_join;
   std::vector<int> seen(1000, 0);
-  for (int round = 0; round < 50; ++round) {
-    fork_join.for_halves(1000, 1, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
-      for (std::ptrdiff_t i = begin; i < end; ++i) ++seen[static_cast<std::size_t>(i)];
-    });
-  }
+  auto count_range = [&seen](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) ++seen[i];
+  };
+  const std::function<void()> first_half = [&] { count_range(0, 500); };
+  const std::function<void()> second_half = [&] { count_range(500, 1000); };
+  for (int round = 0; round < 50; ++round) fork_join.run(first_half, second_half);
   for (int count : seen) EXPECT_EQ(count, 50);
   const std::function<void()> fine = [] {};
   const std::function<void()> throws = [] { throw std::runtime_error("helper side"); };
