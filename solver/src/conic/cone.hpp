@@ -178,7 +178,7 @@ class ConeSet {
   Eigen::Index degree_ = 0;
   ForkJoin* fork_join_ = nullptr;  // set only when the cones are split
   std::size_t split_at_ = 0;       // first cone of the helper's half
-  std::size_t packed_split_ = 0;   // where that half's W² blocks start in pack_W2's output
+  std::vector<std::size_t> packed_offset_;  // where each cone's W² blocks start in pack_W2's output
 };
 
 }  // namespace rbla::conic::detail

@@ -36,18 +36,20 @@ ConeSet::ConeSet(Eigen::Index num_nonneg, const std::vector<Eigen::Index>& soc_d
     const std::vector<Eigen::Index> second(soc_dims.begin() + static_cast<std::ptrdiff_t>(half),
                                            soc_dims.end());
     split_at_ = cones_.size();
-    for (const auto& cone : cones_) {
-      std::vector<ScalingBlock> blocks;
-      cone->append_scaling_blocks(blocks);
-      for (const ScalingBlock& block : blocks)
-        packed_split_ += static_cast<std::size_t>(block.size * block.size);
-    }
     cones_.push_back(std::make_unique<SecondOrderCones>(offset, second));
     offset += cones_.back()->dim();
     fork_join_ = fork_join;
   }
   dim_ = offset;
-  for (const auto& cone : cones_) degree_ += cone->degree();
+  std::size_t packed = 0;
+  for (const auto& cone : cones_) {
+    degree_ += cone->degree();
+    packed_offset_.push_back(packed);
+    std::vector<ScalingBlock> blocks;
+    cone->append_scaling_blocks(blocks);
+    for (const ScalingBlock& block : blocks)
+      packed += static_cast<std::size_t>(block.size * block.size);
+  }
 }
 
 template <class F>
@@ -152,20 +154,7 @@ std::vector<ScalingBlock> ConeSet::scaling_blocks() const {
 }
 
 void ConeSet::pack_W2(std::vector<double>& out) const {
-  if (!fork_join_) {
-    double* cursor = out.data();
-    for (const auto& k : cones_) cursor = k->pack_W2(cursor);
-    return;
-  }
-  const std::function<void()> first = [&] {
-    double* cursor = out.data();
-    for (std::size_t k = 0; k < split_at_; ++k) cursor = cones_[k]->pack_W2(cursor);
-  };
-  const std::function<void()> second = [&] {
-    double* cursor = out.data() + packed_split_;
-    for (std::size_t k = split_at_; k < cones_.size(); ++k) cursor = cones_[k]->pack_W2(cursor);
-  };
-  fork_join_->run(first, second);
+  for_each_cone([&](std::size_t i) { cones_[i]->pack_W2(out.data() + packed_offset_[i]); });
 }
 
 }  // namespace rbla::conic::detail
