@@ -292,29 +292,63 @@ struct ConicSolver::Impl {
     return r;
   }
 
-  // Accuracy the Newton directions need, as a bound on the error of the primal equation e_p (the
-  // refinement's target). A step of length α leaves (1 − αη) r_p + α e_p, so e_p ≤ 1e-3 ‖r_p‖ is
-  // as good as exact. Below that, r_p only has to stay where it cannot change the answer: in
-  // original units it moves the objective by y_origᵀ r_orig = ŷᵀr̂ / (s_c s_b τ²) and the
-  // feasibility measure by ‖D⁻¹ r̂‖∞ / (s_b τ) (evaluate()). A tenth of what would use up the gap
-  // tolerance or the feasibility tolerance is allowed. Without that bound the façade solves
-  // drove r_p six orders of magnitude below tol_feas, and the CG steps doing it were most of
-  // the refinement late in large solves. refine_tol_rel (1 + ‖b‖τ) stays an absolute floor.
-  double direction_accuracy(const Vec& rp, const Vec& y, double tau, const Metrics& metrics) const {
+  // Accuracy the Newton directions need: bounds on the errors of the primal equation,
+  // e_p = A dx − b dτ + η r_p, and of the gap equation, e_g (the refinement's targets).
+  struct DirectionAccuracy {
+    // ‖e_p‖∞, |e_g| at or below this are as good as exact: a step of length α leaves
+    // (1 − αη) r_p + α e_p, so e_p ≤ 1e-3 ‖r_p‖ does not slow the Newton decrease of r_p.
+    // refine_tol_rel (1 + ‖b‖τ) is an absolute floor.
+    double exact = 0;
+    // Larger errors are still harmless while r_p stays where it cannot change the answer. Step
+    // after step, r_p settles near e_p / η (it gains α e_p and loses αη r_p), r_g near e_g / η.
+    // In original units r_p moves the objective gap by y_origᵀ r_orig = ŷᵀr̂ / (s_c s_b τ²)
+    // (cᵀx − bᵀy = xᵀz − r_dᵀx + yᵀr_p) and the feasibility measure by ‖D⁻¹ r̂‖∞ / (s_b τ);
+    // r_g is the gap itself, scaled by s_c s_b τ (evaluate()). A tenth of what would use up the
+    // gap or the feasibility tolerance is allowed: the budgets below are for |ŷ|ᵀ|e_p|,
+    // ‖D⁻¹ e_p‖∞ and |e_g| at η = 1. The objective is judged by the measured |ŷ|ᵀ|e_p| rather
+    // than ‖ŷ‖₁ ‖e_p‖∞: late in the façade solves the error of a plain correction sits on rows
+    // where ŷ is 1e-3 of its largest entries (8051 blocks: |ŷ|ᵀ|e_p| ≈ 1e-11 against a budget of
+    // 1.4e-9, ‖ŷ‖₁ ‖e_p‖∞ ≈ 6e-8). Refinement bringing ‖e_p‖∞ under ‖ŷ‖₁-based targets took
+    // 519 of the 939 solves at 30323 blocks, mostly in CG passes that could not get there (the
+    // error's floor is the cancellation in A W² (Aᵀp + r₁), which CG on M does not reach).
+    double objective = 0;
+    double feasibility = 0;
+    double gap = 0;
+    // An ‖e_p‖∞ that meets the budgets at η = 1 whatever ŷ: the CG target in M (whose residual
+    // is not e_p) and the scale of the refinement's failure test.
+    double uniform = 0;
+
+    // Whether errors (e_p, e_g) of a direction with this η are acceptable; abs_y = |ŷ|.
+    bool accepts(const Vec& ep, double eg, double eta, const Vec& abs_y, const Vec& row_scale) const {
+      const double error = std::max(inf_norm(ep), std::abs(eg));
+      if (error <= exact) return true;
+      if (!(std::abs(eg) <= eta * gap)) return false;
+      const double limit = eta * feasibility;
+      double weighted = 0;
+      for (Eigen::Index i = 0; i < ep.size(); ++i) {
+        const double e = std::abs(ep[i]);
+        if (!(e <= limit * row_scale[i])) return false;
+        weighted += abs_y[i] * e;
+      }
+      return weighted <= eta * objective;
+    }
+  };
+  DirectionAccuracy direction_accuracy(const Vec& rp, const Vec& y, double tau,
+                                       const Metrics& metrics) const {
     const auto& eq = equilibration;
-    double target = std::max(settings.refine_tol_rel * (1.0 + inf_norm(b) * tau), 1e-3 * inf_norm(rp));
+    DirectionAccuracy a;
+    a.exact = std::max(settings.refine_tol_rel * (1.0 + inf_norm(b) * tau), 1e-3 * inf_norm(rp));
+    const double gap_scale = eq.c_scale * eq.b_scale * tau;
+    a.gap = 0.1 * settings.tol_gap_rel * std::max(1.0, std::abs(metrics.primal_objective)) * gap_scale;
+    a.objective = a.gap * tau;
+    a.feasibility = 0.1 * settings.tol_feas *
+                    std::max(1.0, inf_norm(problem.b) + inf_norm(metrics.x)) * eq.b_scale * tau;
     const double y_norm = y.lpNorm<1>();
-    const double objective_share = y_norm > 0.0
-        ? settings.tol_gap_rel * std::max(1.0, std::abs(metrics.primal_objective)) * eq.c_scale * eq.b_scale *
-              tau * tau / y_norm
-        : std::numeric_limits<double>::infinity();
     const double min_row_scale = eq.row_scale.size() > 0 ? eq.row_scale.minCoeff() : 1.0;
-    const double feasibility_share = settings.tol_feas *
-                                     std::max(1.0, inf_norm(problem.b) + inf_norm(metrics.x)) * eq.b_scale *
-                                     tau * min_row_scale;
-    const double allowed = 0.1 * std::min(objective_share, feasibility_share);
-    if (std::isfinite(allowed)) target = std::max(target, allowed);
-    return target;
+    double uniform = std::min(a.feasibility * min_row_scale, a.gap);
+    if (y_norm > 0) uniform = std::min(uniform, a.objective / y_norm);
+    a.uniform = std::max(a.exact, uniform);
+    return a;
   }
 
   Solution solve(bool allow_least_squares_start);
@@ -457,7 +491,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
     info.least_squares_start = least_squares_start(ne, factor_threads, e, x, y, z, info);
   Vec rp, rd, lambda, W2c, Atq_c, dxq, q, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
   Vec scaled_Ax, scaled_Aty;  // Ã x and Ãᵀ y of the current iterate (residuals, evaluate())
-  Vec dx_a, dy_a, dz_a, dx, dy, dz, scaled_dx, scaled_dz, lambda_sq, corr, ep, dp, ddx;
+  Vec dx_a, dy_a, dz_a, dx, dy, dz, scaled_dx, scaled_dz, lambda_sq, corr, ep, dp, ddx, abs_y;
   Vec trial_s, trial_z, trial_v, ds_c, cdx, cdy, cdz;
   double rg = 0;
   double last_step = 0, last_sigma = 0;
@@ -481,7 +515,9 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
     rg = b.dot(y) - c.dot(x) - kappa;
     const double mu = (x.dot(z) + tau * kappa) / (nu + 1.0);
     metrics = evaluate(x, y, z, tau, &scaled_Ax, &scaled_Aty);
-    const double refine_target = direction_accuracy(rp, y, tau, metrics);
+    const DirectionAccuracy accuracy = direction_accuracy(rp, y, tau, metrics);
+    const double refine_target = accuracy.uniform;
+    abs_y = y.cwiseAbs();
     // Late iterations of degenerate problems can lose accuracy; the best iterate is kept for the
     // reduced-accuracy fallback.
     const double merit = metrics.merit(s.tol_feas, s.tol_gap_abs, s.tol_gap_rel);
@@ -587,13 +623,23 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
       cones.mul_W2(c, W2c);
       multiply_A(W2c, rhs);
       rhs += b;
-      // q enters every direction (and the dτ denominator), so it is solved tightly.
-      refine_steps +=
-          ne->solve(rhs, q, s.refine_max_iter, s.refine_tol_rel * (1.0 + inf_norm(rhs)));
-      multiply_At(q, Atq_c);
-      Atq_c -= c;
-      cones.mul_W2(Atq_c, dxq);
-      const double denominator = b.dot(q) - c.dot(dxq) + kappa / tau;
+      // q is solved plainly. Its error reaches a direction only through q, W²(Aᵀq − c) and the
+      // denominator, which every direction and correction uses consistently (the gap equation
+      // holds for whatever q was computed), so what it leaves in the primal equation is part of
+      // the e_p each refinement measures and removes. Refining q to 1e-13 by CG cost a solve
+      // and a product with M per iteration and bought nothing: 1920-block 3-D seismic 28 → 29
+      // iterations and 166 → 165 solves, settlement 15 → 15; 8051 blocks 50 → 47 iterations,
+      // 355 → 308 solves. Only a denominator that rounding made non-positive (it is
+      // ‖W(Aᵀq − c)‖² + κ/τ for the exact q) sends q back to CG.
+      double denominator = 0;
+      for (int q_refine : {0, s.refine_max_iter}) {
+        refine_steps += ne->solve(rhs, q, q_refine, s.refine_tol_rel * (1.0 + inf_norm(rhs)));
+        multiply_At(q, Atq_c);
+        Atq_c -= c;
+        cones.mul_W2(Atq_c, dxq);
+        denominator = b.dot(q) - c.dot(dxq) + kappa / tau;
+        if (denominator > 0) break;
+      }
 
       // Refinement of a direction on the unreduced residuals: the normal equations lose accuracy
       // through the cancellation in A W² (Aᵀp + r₁) when W² is ill-conditioned (late iterations),
@@ -607,20 +653,37 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
                                   Vec& out_dz, double& out_dtau, double& out_dkappa) {
         bool corrected = false;
         double previous = std::numeric_limits<double>::infinity();
+        double ddtau = 0;  // the last correction's, with dp and ddx (to take it back)
         for (int pass = 0; pass < s.refine_max_iter; ++pass) {
           multiply_A(out_dx, ep);
           ep += eta * rp - b * out_dtau;
           const double eg = b.dot(out_dy) - c.dot(out_dx) - out_dkappa + eta * rg;
-          const double error = std::max(inf_norm(ep), std::abs(eg));
+          double error = std::max(inf_norm(ep), std::abs(eg));
+          const bool accepted = accuracy.accepts(ep, eg, eta, abs_y, equilibration.row_scale);
+          // A correction that made the error larger is taken back. The factor is then of a
+          // matrix too far from M for refinement to converge: late in large solves the rounding
+          // of NT blocks with condition numbers past 1/ε (W² of a cone near its boundary) leaves
+          // M + δI with eigenvalues far below M's, and each further correction multiplied the
+          // error (30323 blocks: by 2 to 90 per pass, to ‖e_p‖∞ = 7 from 1e-2), which blocked
+          // the step (α < 1e-4) four times in eight iterations.
+          const bool worse = pass >= 1 && !accepted && !(error <= previous);
+          if (worse) {
+            out_dy -= dp + q * ddtau;
+            out_dx -= ddx + dxq * ddtau;
+            out_dtau -= ddtau;
+            out_dkappa = (d_kappa - kappa * out_dtau) / tau;
+            error = previous;
+          }
           // The plain first correction is not judged by the halving test: when the smallest
           // eigenvalue of M falls below the static regularisation δ (nearly infeasible problems,
           // where W² → 0 on most variables), one regularised solve removes only a fraction
           // λ/(λ + δ) of the error along that eigenvector, and stopping there left ~40% of r_p in
           // every direction: the embedding then shrank all iterates together and the
           // infeasibility certificate stalled near 1e-5. CG on the exact M does remove it.
-          if (error <= refine_target || (pass >= 2 && !(error < 0.5 * previous))) {
+          if (accepted || worse || (pass >= 2 && !(error < 0.5 * previous))) {
             // An error above the residual being removed means the solves are not usable.
-            if (error > std::max(1e3 * refine_target, inf_norm(rp))) refinement_failed = true;
+            if (!accepted && error > std::max(1e3 * refine_target, inf_norm(rp)))
+              refinement_failed = true;
             break;
           }
           previous = error;
@@ -629,7 +692,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
           refine_steps += 1 + ne->solve(ep, dp, pass == 0 ? 0 : s.refine_max_iter, refine_target);
           multiply_At(dp, tmp);
           cones.mul_W2(tmp, ddx);
-          const double ddtau = (-eg - b.dot(dp) + c.dot(ddx)) / denominator;
+          ddtau = (-eg - b.dot(dp) + c.dot(ddx)) / denominator;
           out_dy += dp + q * ddtau;
           out_dx += ddx + dxq * ddtau;
           out_dtau += ddtau;

@@ -80,17 +80,18 @@ struct Settings {
   /// Recovery when CHOLMOD reports "not positive definite": δ ← δ · reg_retry_factor, refactor.
   double reg_retry_factor = 100.0;
   int reg_max_retries = 8;
-  /// Iterative refinement, two levels (scaled problem). The solve for q (M q = A W² c + b, used
-  /// by every direction) runs preconditioned CG on the exact, unregularised M until
-  /// ‖rhs − M q‖∞ ≤ refine_tol_rel · (1 + ‖rhs‖∞). Each Newton direction is then corrected on
-  /// its primal and gap equations until max(‖A dx − b dτ + η r_p‖∞, |e_gap|) ≤
-  /// max(refine_tol_rel · (1 + ‖b‖∞ τ), 1e-3 ‖r_p‖∞, a tenth of the error that would move the
-  /// objective by tol_gap_rel or the primal residual by tol_feas, in original units); the first
-  /// correction is one plain solve, later ones use CG. Every loop stops after refine_max_iter
-  /// steps or when the error stops halving (the correction loop only after its first CG
-  /// correction: a regularised plain solve can leave most of the error when M has eigenvalues
-  /// below δ). The predictor (while τ ≥ κ) and centrality correctors that are not kept are not
-  /// refined.
+  /// Iterative refinement (scaled problem). Each Newton direction is corrected on its primal
+  /// and gap equations (e_p = A dx − b dτ + η r_p, e_g) until max(‖e_p‖∞, |e_g|) ≤
+  /// max(refine_tol_rel · (1 + ‖b‖∞ τ), 1e-3 ‖r_p‖∞), or until the residual the errors leave
+  /// (about e/η) would stay under a tenth of tol_gap_rel in the objective (measured as
+  /// |y|ᵀ|e_p| and |e_g|) and of tol_feas in the primal residual, in original units. The first
+  /// correction is one plain solve, later ones use preconditioned CG on M. A loop stops after
+  /// refine_max_iter steps, when a correction made the error larger (it is taken back), or
+  /// when the error stops halving (only after its first CG correction: a regularised plain
+  /// solve can leave most of the error when M has eigenvalues below δ). The solve for q
+  /// (M q = A W² c + b, shared by every direction) is plain; it is refined by CG to
+  /// refine_tol_rel · (1 + ‖rhs‖∞) only if rounding made the dτ denominator non-positive. The
+  /// predictor (while τ ≥ κ) and centrality correctors that are not kept are not refined.
   int refine_max_iter = 10;
   double refine_tol_rel = 1e-13;
   Ordering ordering = Ordering::Best;
