@@ -489,7 +489,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
   detail::NormalEquations* ne = normal.get();
   if (!info.warm_started && s.least_squares_start && allow_least_squares_start)
     info.least_squares_start = least_squares_start(ne, factor_threads, e, x, y, z, info);
-  Vec rp, rd, lambda, W2c, Atq_c, dxq, q, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
+  Vec rp, rd, lambda, W2c, Atq_c, dxq, q, q_rhs, tmp, tmp2, ds, ds_tilde, r1, rhs, p;
   Vec scaled_Ax, scaled_Aty;  // Ã x and Ãᵀ y of the current iterate (residuals, evaluate())
   Vec dx_a, dy_a, dz_a, dx, dy, dz, scaled_dx, scaled_dz, lambda_sq, corr, ep, dp, ddx, abs_y;
   Vec trial_s, trial_z, trial_v, ds_c, cdx, cdy, cdz;
@@ -619,27 +619,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
       }
 
       const auto solve_start = Clock::now();
-      // M q = A W² c + b, and the dτ denominator.
-      cones.mul_W2(c, W2c);
-      multiply_A(W2c, rhs);
-      rhs += b;
-      // q is solved plainly. Its error reaches a direction only through q, W²(Aᵀq − c) and the
-      // denominator, which every direction and correction uses consistently (the gap equation
-      // holds for whatever q was computed), so what it leaves in the primal equation is part of
-      // the e_p each refinement measures and removes. Refining q to 1e-13 by CG cost a solve
-      // and a product with M per iteration and bought nothing: 1920-block 3-D seismic 28 → 29
-      // iterations and 166 → 165 solves, settlement 15 → 15; 8051 blocks 50 → 47 iterations,
-      // 355 → 308 solves. Only a denominator that rounding made non-positive (it is
-      // ‖W(Aᵀq − c)‖² + κ/τ for the exact q) sends q back to CG.
-      double denominator = 0;
-      for (int q_refine : {0, s.refine_max_iter}) {
-        refine_steps += ne->solve(rhs, q, q_refine, s.refine_tol_rel * (1.0 + inf_norm(rhs)));
-        multiply_At(q, Atq_c);
-        Atq_c -= c;
-        cones.mul_W2(Atq_c, dxq);
-        denominator = b.dot(q) - c.dot(dxq) + kappa / tau;
-        if (denominator > 0) break;
-      }
+      double denominator = 0;  // of dτ, set with q below
 
       // Refinement of a direction on the unreduced residuals: the normal equations lose accuracy
       // through the cancellation in A W² (Aᵀp + r₁) when W² is ill-conditioned (late iterations),
@@ -704,17 +684,18 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
           out_dz = -out_dz + c * out_dtau + eta * rd;
         }
       };
-      // Solves the Newton system for (η, d, d_κ); see the header comment. Unrefined (refine =
-      // false), the direction has the plain solve's error, about 1e-8 late in a solve.
-      auto direction = [&](double eta, const Vec& d, double d_kappa, bool refine, Vec& out_dx, Vec& out_dy,
-                           Vec& out_dz, double& out_dtau, double& out_dkappa) {
+      // The right-hand side of M p = −η r_p − A W² r₁ (in rhs; r₁ in r1).
+      auto direction_rhs = [&](double eta, const Vec& d) {
         cones.lambda_divide(d, ds_tilde);
         cones.mul_Winv(ds_tilde, r1);
         r1 -= eta * rd;
         cones.mul_W2(r1, tmp);
         multiply_A(tmp, rhs);
         rhs = -eta * rp - rhs;
-        refine_steps += ne->solve(rhs, p, 0, refine_target);
+      };
+      // The direction from p (and r1) of direction_rhs.
+      auto direction_from_p = [&](double eta, double d_kappa, bool refine, Vec& out_dx, Vec& out_dy,
+                                  Vec& out_dz, double& out_dtau, double& out_dkappa) {
         multiply_At(p, tmp);
         tmp += r1;
         cones.mul_W2(tmp, out_dx);
@@ -728,6 +709,14 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
           multiply_At(out_dy, out_dz);
           out_dz = -out_dz + c * out_dtau + eta * rd;
         }
+      };
+      // Solves the Newton system for (η, d, d_κ); see the header comment. Unrefined (refine =
+      // false), the direction has the plain solve's error, about 1e-8 late in a solve.
+      auto direction = [&](double eta, const Vec& d, double d_kappa, bool refine, Vec& out_dx, Vec& out_dy,
+                           Vec& out_dz, double& out_dtau, double& out_dkappa) {
+        direction_rhs(eta, d);
+        refine_steps += ne->solve(rhs, p, 0, refine_target);
+        direction_from_p(eta, d_kappa, refine, out_dx, out_dy, out_dz, out_dtau, out_dkappa);
       };
       // Largest step keeping x, z in K and τ, κ ≥ 0, measured in the scaled space around λ.
       auto max_step = [&](const Vec& ddx, const Vec& ddz, double dtau, double dkappa) {
@@ -751,7 +740,35 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
       // heads for an infeasibility certificate: there a plain solve can miss much of the step
       // (see refine_direction), and an unrefined predictor left the certificate of a nearly
       // infeasible arch (ConicNearCritical) stalled just above tol_infeas.
-      direction(1.0, ds, -tau * kappa, tau < kappa, dx_a, dy_a, dz_a, dtau_a, dkappa_a);
+      //
+      // M q = A W² c + b (for dτ, in every direction) and the predictor's M p share one pass over
+      // the factor: the triangular solves are memory bound (30323 blocks, one BLAS thread per
+      // domain: 56-60 ms for one right-hand side, 67-75 ms for two).
+      //
+      // q is solved plainly. Its error reaches a direction only through q, W²(Aᵀq − c) and the
+      // denominator, which every direction and correction uses consistently (the gap equation
+      // holds for whatever q was computed), so what it leaves in the primal equation is part of
+      // the e_p each refinement measures and removes. Refining q to 1e-13 by CG cost a solve
+      // and a product with M per iteration and bought nothing: 1920-block 3-D seismic 28 → 29
+      // iterations and 166 → 165 solves, settlement 15 → 15; 8051 blocks 50 → 47 iterations,
+      // 355 → 308 solves. Only a denominator that rounding made non-positive (it is
+      // ‖W(Aᵀq − c)‖² + κ/τ for the exact q) sends q back to CG.
+      cones.mul_W2(c, W2c);
+      multiply_A(W2c, q_rhs);
+      q_rhs += b;
+      direction_rhs(1.0, ds);
+      ne->solve_pair(q_rhs, rhs, q, p);
+      for (int q_refine = 0;; q_refine = s.refine_max_iter) {
+        if (q_refine > 0)
+          refine_steps +=
+              ne->solve(q_rhs, q, q_refine, s.refine_tol_rel * (1.0 + inf_norm(q_rhs)));
+        multiply_At(q, Atq_c);
+        Atq_c -= c;
+        cones.mul_W2(Atq_c, dxq);
+        denominator = b.dot(q) - c.dot(dxq) + kappa / tau;
+        if (denominator > 0 || q_refine > 0) break;
+      }
+      direction_from_p(1.0, -tau * kappa, tau < kappa, dx_a, dy_a, dz_a, dtau_a, dkappa_a);
       const double alpha_aff = std::min(1.0, max_step(dx_a, dz_a, dtau_a, dkappa_a));
       sigma = std::clamp(std::pow(1.0 - alpha_aff, 3), 0.0, 1.0);
 

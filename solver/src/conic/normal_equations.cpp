@@ -283,8 +283,9 @@ void NormalEquations::add_terms(const BlockData& bd, const double* Ak, const int
 }
 
 void NormalEquations::solve_factor(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
+  out.resize(m_);
   if (split_)
-    split_->solve(rhs, out);
+    split_->solve(rhs.data(), 1, out.data());
   else
     cholesky_.solve(rhs, out);
 }
@@ -300,6 +301,29 @@ double NormalEquations::factor_flops() const {
 }
 std::string NormalEquations::backend_name() const {
   return split_ ? split_->backend_name() : cholesky_.backend_name();
+}
+
+void NormalEquations::solve_regularised(Eigen::MatrixXd& rhs_then_out) {
+  num_factor_solves_ += rhs_then_out.cols();
+  // In place: both factors read all of rhs before they write the solution.
+  if (split_)
+    split_->solve(rhs_then_out.data(), static_cast<int>(rhs_then_out.cols()), rhs_then_out.data());
+  else
+    cholesky_.solve(rhs_then_out, rhs_then_out);
+  if (!dense_blocks_.empty()) {
+    const Eigen::MatrixXd w = dense_schur_.solve(dense_D_.transpose() * rhs_then_out);
+    rhs_then_out.noalias() -= dense_Minv_D_ * w;
+  }
+}
+
+void NormalEquations::solve_pair(const Eigen::VectorXd& rhs_a, const Eigen::VectorXd& rhs_b,
+                                 Eigen::VectorXd& a, Eigen::VectorXd& b) {
+  Eigen::MatrixXd both(m_, 2);
+  both.col(0) = rhs_a;
+  both.col(1) = rhs_b;
+  solve_regularised(both);
+  a = both.col(0);
+  b = both.col(1);
 }
 
 void NormalEquations::solve_regularised(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {

@@ -61,10 +61,16 @@ class NormalEquations {
   /// ‖rhs − M dy‖∞ ≤ target or refine_max_iter steps; returns the CG steps taken.
   int solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& dy, int refine_max_iter, double target);
 
+  /// Plain solves (no refinement) of M a = rhs_a and M b = rhs_b, in one pass over the factor:
+  /// the triangular solves are memory bound, so the second right-hand side costs a fraction
+  /// of the first.
+  void solve_pair(const Eigen::VectorXd& rhs_a, const Eigen::VectorXd& rhs_b, Eigen::VectorXd& a,
+                  Eigen::VectorXd& b);
+
   /// out = M v with the exact M of the last factor() call (all blocks, no regularisation).
   void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
 
-  long num_factor_solves() const { return num_factor_solves_; }  ///< forward+backward pairs
+  long num_factor_solves() const { return num_factor_solves_; }  ///< right-hand sides solved
   long num_multiplies() const { return num_multiplies_; }          ///< products with M
   int num_dense_columns() const { return static_cast<int>(dense_blocks_.size()); }
   long num_matrix_nonzeros() const { return static_cast<long>(row_ind_.size()); }
@@ -77,6 +83,9 @@ class NormalEquations {
 
  private:
   void solve_regularised(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
+  /// (M_s + δI)⁻¹ rhs, for each column, by whichever factor is in use, then the dense columns'
+  /// bordering.
+  void solve_regularised(Eigen::MatrixXd& rhs_then_out);
   /// (M_s + δI)⁻¹ rhs by whichever factor is in use.
   void solve_factor(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
 

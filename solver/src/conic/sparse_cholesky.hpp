@@ -48,11 +48,13 @@ class SparseCholesky {
   /// Factors (M + shift·I) with M's lower-triangle values in the pattern's order. False if
   /// CHOLMOD reports that the matrix is not positive definite (the caller then retries).
   bool factorize(const double* values, double shift);
-  /// out = (M + shift·I)⁻¹ rhs with the last successful factor.
+  /// out = (M + shift·I)⁻¹ rhs with the last successful factor, column by column (one pass
+  /// over the factor serves all columns: the solves are memory bound). out may be rhs.
+  void solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& out);
   void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
-  /// x ← L⁻¹ x (transpose false) or L⁻ᵀ x (true), L the factor of P (M + shift·I) Pᵀ: x is in
-  /// the permuted order, no permutation is applied.
-  void solve_triangular(bool transpose, Eigen::VectorXd& x);
+  /// x ← L⁻¹ x (transpose false) or L⁻ᵀ x (true), L the factor of P (M + shift·I) Pᵀ, for each
+  /// column: x is in the permuted order, no permutation is applied.
+  void solve_triangular(bool transpose, Eigen::MatrixXd& x);
   /// P as a list: row k of the permuted matrix is row permutation()[k] of M.
   const int* permutation() const;
   /// The last t columns of L (t = trailing of analyze()) as a dense t×t lower triangle,
@@ -68,8 +70,9 @@ class SparseCholesky {
   int num_analyses() const { return num_analyses_; }
 
  private:
-  /// out = the solution of CHOLMOD's system `system` (CHOLMOD_A, _L, _Lt) for rhs (n values).
-  void solve_system(int system, const double* rhs, Eigen::VectorXd& out);
+  /// out (n × columns, column-major) = the solution of CHOLMOD's system `system` (CHOLMOD_A,
+  /// _L, _Lt) for rhs (the same shape; may be out).
+  void solve_system(int system, const double* rhs, int columns, double* out);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

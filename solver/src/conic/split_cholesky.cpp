@@ -30,7 +30,7 @@ struct SplitCholesky::Domain {
   SparseCholesky factor;
   Eigen::MatrixXd trailing;  // T_d
   Eigen::MatrixXd flipped;   // J T_d J, then J T_d T_dᵀ J (J reverses the order)
-  Eigen::VectorXd work, coupling;
+  Eigen::MatrixXd work, coupling;  // one column per right-hand side
 };
 
 SplitCholesky::SplitCholesky(Ordering ordering, ForkJoin& fork_join)
@@ -171,11 +171,11 @@ bool SplitCholesky::analyze(int n, const int* col_ptr, const int* row_ind) {
     domain.values.assign(domain.row_ind.size(), 0.0);
     domain.trailing.setZero(s, s);
     domain.flipped.setZero(s, s);
-    domain.work.setZero(domain.interior + s);
-    domain.coupling.setZero(s);
+    domain.work.setZero(domain.interior + s, 1);
+    domain.coupling.setZero(s, 1);
   }
   separator_factor_.setZero(s, s);
-  separator_rhs_.setZero(s);
+  separator_rhs_.setZero(s, 1);
   // One after the other: METIS keeps its random state in a global (gk_randinit), so two
   // concurrent orderings would race and differ from run to run.
   for (auto& domain : domains_)
@@ -245,40 +245,48 @@ bool SplitCholesky::factorize(const double* values, const double* share0, const 
   return info == 0;
 }
 
-void SplitCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
+void SplitCholesky::solve(const double* rhs_data, int columns, double* out_data) {
   const int s = separator_size();
-  out.resize(n_);
+  const Eigen::Map<const Eigen::MatrixXd> rhs(rhs_data, n_, columns);
+  Eigen::Map<Eigen::MatrixXd> out(out_data, n_, columns);
   auto forward = [&](int d) {
     Domain& domain = *domains_[d];
     const int* perm = domain.factor.permutation();
     const int* rows = domain.rows.data();
-    for (int k = 0; k < domain.interior; ++k) domain.work[k] = rhs[rows[perm[k]]];
-    domain.work.tail(s).setZero();
+    domain.work.resize(domain.interior + s, columns);
+    for (Eigen::Index j = 0; j < columns; ++j)
+      for (int k = 0; k < domain.interior; ++k) domain.work(k, j) = rhs(rows[perm[k]], j);
+    domain.work.bottomRows(s).setZero();
     domain.factor.solve_triangular(false, domain.work);
     domain.coupling.noalias() =
-        domain.trailing.triangularView<Eigen::Lower>() * domain.work.tail(s);  // = −B_d y_d
+        domain.trailing.triangularView<Eigen::Lower>() * domain.work.bottomRows(s);  // = −B_d y_d
   };
   auto backward = [&](int d) {
     Domain& domain = *domains_[d];
-    domain.work.tail(s).noalias() =
+    domain.work.bottomRows(s).noalias() =
         domain.trailing.triangularView<Eigen::Lower>().transpose() * separator_rhs_;
     domain.factor.solve_triangular(true, domain.work);
     const int* perm = domain.factor.permutation();
     const int* rows = domain.rows.data();
-    for (int k = 0; k < domain.interior; ++k) out[rows[perm[k]]] = domain.work[k];
+    for (Eigen::Index j = 0; j < columns; ++j)
+      for (int k = 0; k < domain.interior; ++k) out(rows[perm[k]], j) = domain.work(k, j);
   };
   const std::function<void()> forward0 = [&] { forward(0); };
   const std::function<void()> forward1 = [&] { forward(1); };
   fork_join_.run(forward0, forward1);
-  for (int j = 0; j < s; ++j)
-    separator_rhs_[j] = rhs[separator_rows_[static_cast<std::size_t>(j)]] +
-                        domains_[0]->coupling[j] + domains_[1]->coupling[j];
+  separator_rhs_.resize(s, columns);
+  for (Eigen::Index c = 0; c < columns; ++c)
+    for (int j = 0; j < s; ++j)
+      separator_rhs_(j, c) = rhs(separator_rows_[static_cast<std::size_t>(j)], c) +
+                             domains_[0]->coupling(j, c) + domains_[1]->coupling(j, c);
   separator_factor_.triangularView<Eigen::Lower>().solveInPlace(separator_rhs_);
   separator_factor_.triangularView<Eigen::Lower>().transpose().solveInPlace(separator_rhs_);
   const std::function<void()> backward0 = [&] { backward(0); };
   const std::function<void()> backward1 = [&] { backward(1); };
   fork_join_.run(backward0, backward1);
-  for (int j = 0; j < s; ++j) out[separator_rows_[static_cast<std::size_t>(j)]] = separator_rhs_[j];
+  for (Eigen::Index c = 0; c < columns; ++c)
+    for (int j = 0; j < s; ++j)
+      out(separator_rows_[static_cast<std::size_t>(j)], c) = separator_rhs_(j, c);
 }
 
 long SplitCholesky::factor_nonzeros() const {

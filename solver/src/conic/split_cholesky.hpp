@@ -61,8 +61,10 @@ class SplitCholesky {
   /// sum is M's value there; a term on the separator alone counts for either). False when M is
   /// not numerically positive definite (the caller then raises the shift).
   bool factorize(const double* values, const double* share0, const double* share1, double shift);
-  /// out = (M + shift·I)⁻¹ rhs with the last successful factorisation.
-  void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
+  /// out = (M + shift·I)⁻¹ rhs with the last successful factorisation, for each of `columns`
+  /// columns (n values each, column-major; one pass over the factors serves all of them). out may be
+  /// rhs: all of rhs is read before out is written.
+  void solve(const double* rhs, int columns, double* out);
 
   long factor_nonzeros() const;
   double factor_bytes() const;
@@ -81,7 +83,7 @@ class SplitCholesky {
   const int* m_col_ptr_ = nullptr;  // M's pattern (the caller's)
   std::unique_ptr<Domain> domains_[2];
   Eigen::MatrixXd separator_factor_;  // Lₛ (lower triangle)
-  Eigen::VectorXd separator_rhs_;
+  Eigen::MatrixXd separator_rhs_;
   ForkJoin& fork_join_;
   Ordering ordering_;
 };
