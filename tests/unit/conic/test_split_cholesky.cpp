@@ -100,6 +100,44 @@ TEST(ConicSplitCholesky, SolvesWhatOneFactorSolves) {
   }
 }
 
+TEST(ConicSplitCholesky, PairSolveIsTwoSingleSolves) {
+  // solve_pair carries two right-hand sides through one pass over the factor (CHOLMOD's
+  // multi-column solve; the split's domains, separator and bordering column by column). Each
+  // column must come out as its own solve would: one factor, the split, and both with the
+  // load multiplier (variable 0) kept out of the factor as a dense column.
+  const NormalCase c = wall_normal_case(14, 18, 4.0, 3);
+  std::mt19937 rng(13);
+  std::normal_distribution<double> normal;
+  const Eigen::Index m = c.A.rows();
+  const Eigen::VectorXd rhs_a = Eigen::VectorXd::NullaryExpr(m, [&] { return normal(rng); });
+  const Eigen::VectorXd rhs_b = Eigen::VectorXd::NullaryExpr(m, [&] { return normal(rng); });
+  ForkJoin fork_join;
+  for (const bool dense_load : {false, true}) {
+    std::vector<bool> dense(static_cast<std::size_t>(c.A.cols()), false);
+    dense[0] = dense_load;
+    for (ForkJoin* threads : {static_cast<ForkJoin*>(nullptr), &fork_join}) {
+      NormalEquations ne(c.A, c.blocks, dense, Ordering::Best, threads);
+      ASSERT_EQ(ne.is_split(), threads != nullptr);
+      ASSERT_EQ(ne.num_dense_columns(), dense_load ? 1 : 0);
+      ASSERT_TRUE(ne.factor(c.packed_W2, 1e-10, 100.0, 8).ok);
+      Eigen::VectorXd a, b, a_pair, b_pair;
+      ne.solve(rhs_a, a, 0, 0.0);
+      ne.solve(rhs_b, b, 0, 0.0);
+      const long before = ne.num_factor_solves();
+      ne.solve_pair(rhs_a, rhs_b, a_pair, b_pair);
+      EXPECT_EQ(ne.num_factor_solves() - before, 2);
+      const std::string where = std::string(threads ? "split" : "one factor") +
+                                (dense_load ? ", dense column" : "");
+      EXPECT_LE((a_pair - a).lpNorm<Eigen::Infinity>(), 1e-12 * a.lpNorm<Eigen::Infinity>())
+          << where;
+      EXPECT_LE((b_pair - b).lpNorm<Eigen::Infinity>(), 1e-12 * b.lpNorm<Eigen::Infinity>())
+          << where;
+      EXPECT_GT((a_pair - b_pair).lpNorm<Eigen::Infinity>(), 1e-3 * a.lpNorm<Eigen::Infinity>())
+          << where << ": the columns were not kept apart";
+    }
+  }
+}
+
 TEST(ConicSplitCholesky, DeclinesWhereNoSmallBalancedSeparatorExists) {
   // A dense normal matrix (every variable touches every row) has no separator short of all
   // rows but one: the split is refused and one factor is used.
