@@ -640,12 +640,12 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
           const double eg = b.dot(out_dy) - c.dot(out_dx) - out_dkappa + eta * rg;
           double error = std::max(inf_norm(ep), std::abs(eg));
           const bool accepted = accuracy.accepts(ep, eg, eta, abs_y, equilibration.row_scale);
-          // A correction that made the error larger is taken back. The factor is then of a
-          // matrix too far from M for refinement to converge: late in large solves the rounding
-          // of NT blocks with condition numbers past 1/ε (W² of a cone near its boundary) leaves
-          // M + δI with eigenvalues far below M's, and each further correction multiplied the
-          // error (30323 blocks: by 2 to 90 per pass, to ‖e_p‖∞ = 7 from 1e-2), which blocked
-          // the step (α < 1e-4) four times in eight iterations.
+          // A correction that made the error larger is taken back: the factor is then too far
+          // from the operator the error is measured with for refinement to converge (rounding
+          // in the assembled M, whose NT blocks late in a solve have condition numbers past
+          // 1/ε). Late in the 30323-block solve each further correction multiplied the error
+          // by 2 to 90, to ‖e_p‖∞ = 7 from 1e-2, and those directions blocked the step
+          // (α < 1e-4) four times in eight iterations.
           const bool worse = pass >= 1 && !accepted && !(error <= previous);
           if (worse) {
             out_dy -= dp + q * ddtau;
@@ -758,15 +758,17 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
       q_rhs += b;
       direction_rhs(1.0, ds);
       ne->solve_pair(q_rhs, rhs, q, p);
-      for (int q_refine = 0;; q_refine = s.refine_max_iter) {
-        if (q_refine > 0)
-          refine_steps +=
-              ne->solve(q_rhs, q, q_refine, s.refine_tol_rel * (1.0 + inf_norm(q_rhs)));
+      auto finish_q = [&] {
         multiply_At(q, Atq_c);
         Atq_c -= c;
         cones.mul_W2(Atq_c, dxq);
         denominator = b.dot(q) - c.dot(dxq) + kappa / tau;
-        if (denominator > 0 || q_refine > 0) break;
+      };
+      finish_q();
+      if (!(denominator > 0)) {
+        const double q_target = s.refine_tol_rel * (1.0 + inf_norm(q_rhs));
+        refine_steps += ne->solve(q_rhs, q, s.refine_max_iter, q_target);
+        finish_q();
       }
       direction_from_p(1.0, -tau * kappa, tau < kappa, dx_a, dy_a, dz_a, dtau_a, dkappa_a);
       const double alpha_aff = std::min(1.0, max_step(dx_a, dz_a, dtau_a, dkappa_a));

@@ -218,7 +218,8 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
       for (std::size_t a = 0; a < bd.rows.size(); ++a)
         column[bd.rows[a]] = local_A_[bd.a_offset + a];
       dense_D_.col(j) = column;
-      solve_factor(column, solved);
+      solved = column;
+      solve_factor(solved.data(), 1);
       dense_Minv_D_.col(j) = solved;
     }
     schur.noalias() = dense_D_.transpose() * dense_Minv_D_;
@@ -282,12 +283,11 @@ void NormalEquations::add_terms(const BlockData& bd, const double* Ak, const int
   }
 }
 
-void NormalEquations::solve_factor(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
-  out.resize(m_);
+void NormalEquations::solve_factor(double* x, int columns) {
   if (split_)
-    split_->solve(rhs.data(), 1, out.data());
+    split_->solve(x, columns, x);  // in place: it reads all of rhs before it writes
   else
-    cholesky_.solve(rhs, out);
+    cholesky_.solve(x, columns);
 }
 
 long NormalEquations::factor_nonzeros() const {
@@ -303,17 +303,19 @@ std::string NormalEquations::backend_name() const {
   return split_ ? split_->backend_name() : cholesky_.backend_name();
 }
 
-void NormalEquations::solve_regularised(Eigen::MatrixXd& rhs_then_out) {
-  num_factor_solves_ += rhs_then_out.cols();
-  // In place: both factors read all of rhs before they write the solution.
-  if (split_)
-    split_->solve(rhs_then_out.data(), static_cast<int>(rhs_then_out.cols()), rhs_then_out.data());
-  else
-    cholesky_.solve(rhs_then_out, rhs_then_out);
+void NormalEquations::solve_regularised(double* x, int columns) {
+  num_factor_solves_ += columns;
+  solve_factor(x, columns);
   if (!dense_blocks_.empty()) {
-    const Eigen::MatrixXd w = dense_schur_.solve(dense_D_.transpose() * rhs_then_out);
-    rhs_then_out.noalias() -= dense_Minv_D_ * w;
+    Eigen::Map<Eigen::MatrixXd> solutions(x, m_, columns);
+    const Eigen::MatrixXd w = dense_schur_.solve(dense_D_.transpose() * solutions);
+    solutions.noalias() -= dense_Minv_D_ * w;
   }
+}
+
+void NormalEquations::solve_regularised(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
+  out = rhs;
+  solve_regularised(out.data(), 1);
 }
 
 void NormalEquations::solve_pair(const Eigen::VectorXd& rhs_a, const Eigen::VectorXd& rhs_b,
@@ -321,18 +323,9 @@ void NormalEquations::solve_pair(const Eigen::VectorXd& rhs_a, const Eigen::Vect
   Eigen::MatrixXd both(m_, 2);
   both.col(0) = rhs_a;
   both.col(1) = rhs_b;
-  solve_regularised(both);
+  solve_regularised(both.data(), 2);
   a = both.col(0);
   b = both.col(1);
-}
-
-void NormalEquations::solve_regularised(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
-  ++num_factor_solves_;
-  solve_factor(rhs, out);
-  if (!dense_blocks_.empty()) {
-    const Eigen::VectorXd w = dense_schur_.solve(dense_D_.transpose() * out);
-    out.noalias() -= dense_Minv_D_ * w;
-  }
 }
 
 void NormalEquations::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {

@@ -83,11 +83,11 @@ class NormalEquations {
 
  private:
   void solve_regularised(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
-  /// (M_s + δI)⁻¹ rhs, for each column, by whichever factor is in use, then the dense columns'
-  /// bordering.
-  void solve_regularised(Eigen::MatrixXd& rhs_then_out);
-  /// (M_s + δI)⁻¹ rhs by whichever factor is in use.
-  void solve_factor(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
+  /// x ← the regularised solve of each of `columns` columns of x (m values each): the factor,
+  /// then the dense columns' bordering.
+  void solve_regularised(double* x, int columns);
+  /// x ← (M_s + δI)⁻¹ x, column by column, by whichever factor is in use.
+  void solve_factor(double* x, int columns);
 
   struct BlockData {
     Eigen::Index first_col = 0;

@@ -271,36 +271,29 @@ bool SparseCholesky::factorize(const double* values, double shift) {
   return c.status >= CHOLMOD_OK;
 }
 
-void SparseCholesky::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& out) {
-  out.resize(impl_->n, rhs.cols());
-  if (impl_->n == 0 || rhs.cols() == 0) return;
-  solve_system(CHOLMOD_A, rhs.data(), static_cast<int>(rhs.cols()), out.data());
-}
-
-void SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
-  out.resize(impl_->n);
-  if (impl_->n == 0) return;
-  solve_system(CHOLMOD_A, rhs.data(), 1, out.data());
+void SparseCholesky::solve(double* x, int columns) {
+  if (impl_->n == 0 || columns == 0) return;
+  solve_system(CHOLMOD_A, x, columns);
 }
 
 void SparseCholesky::solve_triangular(bool transpose, Eigen::MatrixXd& x) {
   if (impl_->n == 0 || x.cols() == 0) return;
-  solve_system(transpose ? CHOLMOD_Lt : CHOLMOD_L, x.data(), static_cast<int>(x.cols()), x.data());
+  solve_system(transpose ? CHOLMOD_Lt : CHOLMOD_L, x.data(), static_cast<int>(x.cols()));
 }
 
-void SparseCholesky::solve_system(int system, const double* rhs, int columns, double* out) {
+void SparseCholesky::solve_system(int system, double* x, int columns) {
   cholmod_dense b{};
   b.nrow = static_cast<size_t>(impl_->n);
   b.ncol = static_cast<size_t>(columns);
   b.nzmax = b.nrow * b.ncol;
   b.d = b.nrow;
-  b.x = const_cast<double*>(rhs);
+  b.x = x;
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
   cholmod_solve2(system, impl_->factor, &b, nullptr, &impl_->solution, nullptr, &impl_->work_y,
                  &impl_->work_e, &impl_->common);
   const double* solution = static_cast<const double*>(impl_->solution->x);
-  std::copy(solution, solution + b.nzmax, out);
+  std::copy(solution, solution + b.nzmax, x);
 }
 
 const int* SparseCholesky::permutation() const {

@@ -48,10 +48,10 @@ class SparseCholesky {
   /// Factors (M + shift·I) with M's lower-triangle values in the pattern's order. False if
   /// CHOLMOD reports that the matrix is not positive definite (the caller then retries).
   bool factorize(const double* values, double shift);
-  /// out = (M + shift·I)⁻¹ rhs with the last successful factor, column by column (one pass
-  /// over the factor serves all columns: the solves are memory bound). out may be rhs.
-  void solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& out);
-  void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
+  /// x ← (M + shift·I)⁻¹ x with the last successful factor, for each of `columns` columns (n
+  /// values each, column-major): one pass over the factor serves all of them, and the solves
+  /// are memory bound.
+  void solve(double* x, int columns);
   /// x ← L⁻¹ x (transpose false) or L⁻ᵀ x (true), L the factor of P (M + shift·I) Pᵀ, for each
   /// column: x is in the permuted order, no permutation is applied.
   void solve_triangular(bool transpose, Eigen::MatrixXd& x);
@@ -70,9 +70,9 @@ class SparseCholesky {
   int num_analyses() const { return num_analyses_; }
 
  private:
-  /// out (n × columns, column-major) = the solution of CHOLMOD's system `system` (CHOLMOD_A,
-  /// _L, _Lt) for rhs (the same shape; may be out).
-  void solve_system(int system, const double* rhs, int columns, double* out);
+  /// x (n × columns, column-major) ← the solution of CHOLMOD's system `system` (CHOLMOD_A,
+  /// _L, _Lt) with right-hand sides x.
+  void solve_system(int system, double* x, int columns);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
