@@ -90,8 +90,9 @@ struct Settings {
   /// when the error stops halving (only after its first CG correction: a regularised plain
   /// solve can leave most of the error when M has eigenvalues below δ). The solve for q
   /// (M q = A W² c + b, shared by every direction) is plain; it is refined by CG to
-  /// refine_tol_rel · (1 + ‖rhs‖∞) only if rounding made the dτ denominator non-positive. The
-  /// predictor (while τ ≥ κ) and centrality correctors that are not kept are not refined.
+  /// refine_tol_rel · (1 + ‖rhs‖∞) only if rounding made the dτ denominator non-positive. Of
+  /// an iteration's directions only the one taken (the corrector or its last kept centrality
+  /// corrector) is refined, and the predictor while τ < κ.
   int refine_max_iter = 10;
   double refine_tol_rel = 1e-13;
   Ordering ordering = Ordering::Best;
