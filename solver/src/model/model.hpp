@@ -122,6 +122,19 @@ struct DetectionSettings {
   double min_area_fraction = 1e-6;             // of the smaller face
 };
 
+/// A pair of faces of different blocks that interface detection looked at and rejected: close and
+/// nearly opposite, but outside its tolerances. Kept so that a verdict can say which joints were
+/// missed and with which tolerances they would have been accepted.
+struct NearMiss {
+  int block_a = -1;
+  int block_b = -1;
+  int face_a = -1;              ///< index into blocks[block_a].faces
+  int face_b = -1;              ///< index into blocks[block_b].faces
+  double distance = 0.0;        ///< m, largest distance between the two face planes over the overlap
+  double angle_degrees = 0.0;   ///< deviation of the outward normals from exactly opposite
+  double overlap_area = 0.0;    ///< m^2, overlap of the two faces projected on their mid-plane
+};
+
 struct BoundingBox {
   Vec3 min = Vec3::Zero();
   Vec3 max = Vec3::Zero();
@@ -151,6 +164,8 @@ struct Model {
   DetectionSettings detection;
   std::unordered_map<std::string, int> block_index;  // id -> position in `blocks`
   std::vector<Warning> warnings;
+  /// Face pairs interface detection rejected but that came close (filled by geometry::prepare_model).
+  std::vector<NearMiss> near_misses;
 
   BoundingBox bounding_box() const;
   std::size_t num_contact_points() const;
