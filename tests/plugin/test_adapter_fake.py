@@ -59,7 +59,9 @@ class AdapterTest(unittest.TestCase):
         _obj(doc, fr.mesh_box(5, 6, 5, 6, 1, 2), "block")   # name used twice -> GUID ids
         col = self.document.collect_model(doc)
         self.assertEqual(len(col.issues), 1)
-        self.assertIn("'Stone 7'", col.issues[0])
+        self.assertIn('object "Stone 7": rbla.role', col.issues[0])
+        self.assertEqual(col.model, None)
+        self.assertIn("duplicate_name", [m.code for m in col.messages])
         doc.Strings.SetString("rbla.analysis", "wind")
         col = self.document.collect_model(doc)
         self.assertIn("rbla.analysis", col.issues[0])
