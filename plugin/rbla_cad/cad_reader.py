@@ -179,8 +179,8 @@ def _block_ids(recs, attrs, rep):
 
 
 def _blocks(recs, mb, rep, block_objects):
-    """Add the block objects to the builder; returns {id: (vertices, faces, role)} in the
-    document's units (for interface and load searches), in document order."""
+    """Add the block objects to the builder; returns {id: (vertices, faces, role, box low,
+    box high)} in the document's units (for interface and load searches), in document order."""
     attrs = [ut.read_keys("block", rec.get("user_text"), _who(rec), rep, rec.get("guid"))
              for rec in recs]
     ids = _block_ids(recs, attrs, rep)
@@ -208,7 +208,8 @@ def _blocks(recs, mb, rep, block_objects):
         except ModelError as e:
             rep.add("block_geometry", rec.get("guid"), who=who, detail=str(e))
             continue
-        solids[bid] = (rec["vertices"], rec["faces"], role)
+        lo, hi = geo.bounding_box(rec["vertices"])
+        solids[bid] = (rec["vertices"], rec["faces"], role, lo, hi)
         block_objects[bid] = rec.get("guid")
     return solids
 
@@ -222,6 +223,11 @@ def _found_text(ids):
         (", ..." if len(ids) > 5 else "")
 
 
+def _in_box(p, lo, hi, margin):
+    """p within margin of the box (a cheap test before the exact ones)."""
+    return all(lo[c] - margin <= p[c] <= hi[c] + margin for c in range(3))
+
+
 def _interface_pair(rec, a, polys, solids, tol, rep):
     """The two block ids of an interface object, or None (error reported)."""
     who = _who(rec)
@@ -232,8 +238,9 @@ def _interface_pair(rec, a, polys, solids, tol, rep):
         return None if missing else list(a["rbla.blocks"])
     near = polygons.plane_tolerance(polys, SEARCH_FACTOR * tol, MERGE_RELATIVE)
     corners = [p for poly in polys for p in poly]
-    found = [bid for bid, (v, f, _) in solids.items()
-             if all(polygons.surface_distance(p, v, f) <= near for p in corners)]
+    found = [bid for bid, (v, f, _, lo, hi) in solids.items()
+             if all(_in_box(p, lo, hi, near) for p in corners) and
+             all(polygons.surface_distance(p, v, f) <= near for p in corners)]
     if len(found) != 2:
         rep.add("interface_blocks", rec.get("guid"), who=who, found=_found_text(found))
         return None
@@ -324,7 +331,8 @@ def _load_block(rec, a, point, solids, tol, rep):
             rep.add("unknown_block", rec.get("guid"), "rbla.block", who=who, id=ut.q(bid))
             return None
     else:
-        found = [b for b, (v, f, _) in solids.items() if polygons.contains(point, v, f, tol)]
+        found = [b for b, (v, f, _, lo, hi) in solids.items()
+                 if _in_box(point, lo, hi, tol) and polygons.contains(point, v, f, tol)]
         if len(found) != 1:
             rep.add("load_block", rec.get("guid"), who=who, found=_found_text(found))
             return None

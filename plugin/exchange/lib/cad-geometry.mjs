@@ -60,10 +60,16 @@ function fittedPlane(members) {
   return [[s[0] / ln, s[1] / ln, s[2] / ln], mean(corners)];
 }
 
+/** [low corner, high corner] of the points' axis-aligned bounding box. */
+export function boundingBox(points) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (const p of points) for (let c = 0; c < 3; c++) { lo[c] = Math.min(lo[c], p[c]); hi[c] = Math.max(hi[c], p[c]); }
+  return [lo, hi];
+}
+
 /** max(tol, relative x the diagonal of the pieces' bounding box). */
 export function planeTolerance(pieces, tol, relative) {
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (const pts of pieces) for (const p of pts) for (let c = 0; c < 3; c++) { lo[c] = Math.min(lo[c], p[c]); hi[c] = Math.max(hi[c], p[c]); }
+  const [lo, hi] = boundingBox(pieces.flat());
   return Math.max(tol, relative * norm(sub(hi, lo)));
 }
 

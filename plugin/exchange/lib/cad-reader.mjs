@@ -3,7 +3,7 @@
 // messages, as plugin/rbla_cad/cad_reader.py, which documents the document record this takes;
 // tests/plugin/cad_cases run both readers on the same records and compare models and messages.
 import { DATA, KEYS, TRUE, Report, Bad, readKeys, normalise, parseValue, q, fmt, whoObject } from './cad-attributes.mjs';
-import { mergeCoplanar, planeTolerance, surfaceDistance, contains } from './cad-geometry.mjs';
+import { mergeCoplanar, planeTolerance, boundingBox, surfaceDistance, contains } from './cad-geometry.mjs';
 import { polyhedronMassProps, norm } from './rbla-geometry.mjs';
 
 const SEARCH_FACTOR = DATA.interface_search.factor;
@@ -191,13 +191,16 @@ function blocks(recs, draft, rep, blockObjects) {
     try {
       draft.addBlock(bid, rec.vertices, rec.faces, { role, unitWeight: a['rbla.unit_weight'], label, centroid: rec.centroid, volume: rec.volume, friction: a['rbla.friction'] });
     } catch (e) { rep.add('block_geometry', rec.guid ?? null, null, { who: w, detail: e.message }); return; }
-    solids.set(bid, [rec.vertices, rec.faces, role]);
+    solids.set(bid, [rec.vertices, rec.faces, role, ...boundingBox(rec.vertices)]);
     blockObjects.set(bid, rec.guid);
   });
   return solids;
 }
 
 // --- interfaces ---------------------------------------------------------------------------------------
+
+/** p within margin of the box (a cheap test before the exact ones). */
+const inBox = (p, lo, hi, margin) => [0, 1, 2].every((c) => lo[c] - margin <= p[c] && p[c] <= hi[c] + margin);
 
 const foundText = (ids) => (ids.length ? `${ids.length} blocks: ${ids.slice(0, 5).map(q).join(', ')}${ids.length > 5 ? ', ...' : ''}` : 'no block');
 
@@ -209,7 +212,7 @@ function interfacePair(rec, a, polys, solids, tol, rep) {
   }
   const near = planeTolerance(polys, SEARCH_FACTOR * tol, MERGE_RELATIVE);
   const corners = polys.flat();
-  const found = [...solids.entries()].filter(([, [v, f]]) => corners.every((p) => surfaceDistance(p, v, f) <= near)).map(([bid]) => bid);
+  const found = [...solids.entries()].filter(([, [v, f, , lo, hi]]) => corners.every((p) => inBox(p, lo, hi, near)) && corners.every((p) => surfaceDistance(p, v, f) <= near)).map(([bid]) => bid);
   if (found.length !== 2) { rep.add('interface_blocks', rec.guid ?? null, null, { who: who(rec), found: foundText(found) }); return null; }
   return found;
 }
@@ -272,7 +275,7 @@ function loadBlock(rec, a, point, solids, tol, rep) {
     bid = a['rbla.block'];
     if (!solids.has(bid)) { rep.add('unknown_block', obj, 'rbla.block', { who: who(rec), id: q(bid) }); return null; }
   } else {
-    const found = [...solids.entries()].filter(([, [v, f]]) => contains(point, v, f, tol)).map(([b]) => b);
+    const found = [...solids.entries()].filter(([, [v, f, , lo, hi]]) => inBox(point, lo, hi, tol) && contains(point, v, f, tol)).map(([b]) => b);
     if (found.length !== 1) { rep.add('load_block', obj, null, { who: who(rec), found: foundText(found) }); return null; }
     bid = found[0];
   }
