@@ -30,8 +30,9 @@ otherwise, so the solver still detects the contacts the user did not label.
 
 Friction. The schema has friction on interfaces and a model default only. ``add_block(...,
 friction=mu)`` is accepted for CAD convenience: a given interface without its own friction takes
-the smaller of its two blocks' values; detected interfaces take ``defaults.friction`` (a
-warning in ``builder.warnings`` says so when block frictions cannot reach them).
+the smaller of its two blocks' values; the interfaces the solver detects share one friction,
+``defaults.friction``, which is then the smallest of the model default and every block value
+(``detected_friction``; a warning in ``builder.warnings`` says so).
 """
 
 import json

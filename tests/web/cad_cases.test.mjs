@@ -166,6 +166,14 @@ test('the Python reader ran on the shared cases', () => {
   assert.equal(PY.size, CASES.length);
 });
 
+test('numbers in messages: the JS reader prints them as Python prints %.12g', async () => {
+  const { fmt } = await import(path.join(EXCHANGE, 'lib', 'cad-attributes.mjs'));
+  const xs = [0, 0.6, 0.1 + 0.2, 25.4, 1e12, 1e7, 123456789012.5, 123456789013.5, 0.5, 2.5, 1e-5, 0.0001, -3.25e-7, 1e21, 5e-324, 99999999999.95, 999999999999.5, 1 / 3, -0.001, 304.8, 1e100];
+  const r = run(process.env.PYTHON || 'python3', ['-c', `import json, sys; print(json.dumps(['%.12g' % x for x in json.load(sys.stdin)]))`], { input: JSON.stringify(xs) });
+  assert.equal(r.code, 0, r.stderr);
+  assert.deepEqual(xs.map(fmt), JSON.parse(r.stdout));
+});
+
 const dir = tmpDir('rbla-cad-cases-');
 for (const c of CASES) {
   test(`CAD case ${c.name}: JS reader = expectation = Python reader = .3dm`, async () => {

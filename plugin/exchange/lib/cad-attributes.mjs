@@ -24,11 +24,19 @@ export const q = (text) => JSON.stringify(String(text));
 /** A number as both readers print it: C's %.12g (what Python's '%.12g' gives). */
 export function fmt(x) {
   if (x === 0) return Object.is(x, -0) ? '-0' : '0';
-  const [mant, e] = x.toExponential(11).split('e');
+  if (!Number.isFinite(x)) return String(x);
+  const sign = x < 0 ? '-' : '';
+  const [m, e] = Math.abs(x).toExponential(11).split('e');
+  let digits = m.replace('.', ''); // 12 significant digits; toExponential rounds exact ties up
+  const [xm, xe] = Math.abs(x).toExponential(100).split('e');
+  const exact = xm.replace('.', '');
+  // C rounds an exact tie to even: keep the 12 digits when the 12th is even
+  if (xe === e && exact[12] === '5' && /^0*$/.test(exact.slice(13)) && Number(exact[11]) % 2 === 0) digits = exact.slice(0, 12);
   const E = parseInt(e, 10);
-  const strip = (s) => (s.includes('.') ? s.replace(/0+$/, '').replace(/\.$/, '') : s);
-  if (E < -4 || E >= 12) return `${strip(mant)}e${E < 0 ? '-' : '+'}${String(Math.abs(E)).padStart(2, '0')}`;
-  return strip(x.toFixed(11 - E));
+  const strip = (t) => (t.includes('.') ? t.replace(/0+$/, '').replace(/\.$/, '') : t);
+  if (E < -4 || E >= 12) return `${sign}${strip(`${digits[0]}.${digits.slice(1)}`)}e${E < 0 ? '-' : '+'}${String(Math.abs(E)).padStart(2, '0')}`;
+  const fixed = E >= 0 ? `${digits.slice(0, E + 1)}.${digits.slice(E + 1)}` : `0.${'0'.repeat(-E - 1)}${digits}`;
+  return sign + strip(fixed);
 }
 
 /** How messages name an object: object "Stone 7", or unnamed object <guid>. */
