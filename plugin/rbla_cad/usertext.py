@@ -387,6 +387,13 @@ def markdown():
                 _value_text(e), default_text(e), e["text"],
                 " (model: `%s`)" % e["model"] if "model" in e else ""))
         L.append("")
+        if kind == "interface":
+            L += [DATA["interface_merge"]["$comment"].replace(
+                "relative x", "%s x" % fmt(DATA["interface_merge"]["relative"])),
+                "", DATA["interface_search"]["$comment"].replace(
+                    "factor x", "%s x" % fmt(DATA["interface_search"]["factor"])).replace(
+                    "interface_merge.relative x", "%s x" % fmt(DATA["interface_merge"]["relative"])),
+                ""]
     L += ["## Units", "",
           "The document's unit system gives `units.length`; other units are converted "
           "(warning `units_converted`):", "", "| document unit | model unit | factor |",
