@@ -1,12 +1,16 @@
 #!/usr/bin/env node
-// Convert a Rhino .3dm (closed planar-faced Breps, extrusions, closed meshes) to an rbla model JSON.
+// Convert a Rhino .3dm to an rbla model JSON by the CAD attribute convention
+// (docs/cad-attributes.md; the Rhino plugin reads the same keys the same way).
 import fs from 'node:fs';
-import { parseArgs, numberOpt, main, usageError } from './lib/cli.mjs';
+import path from 'node:path';
+import { parseArgs, numberOpt, main, usageError, writeFileAtomic } from './lib/cli.mjs';
 import { readFile3dm, file3dmToModel } from './lib/rhino-io.mjs';
 
 const USAGE = `usage: 3dm-to-model.mjs IN.3dm -o MODEL.json [--unit-weight W] [--friction MU] [--title TEXT]
-  Object name -> block id; object User Text rbla.role (free|fixed|moving_support),
-  rbla.unit_weight, rbla.friction, rbla.label. Document units -> units.length.`;
+  Blocks: closed Breps, extrusions, closed meshes; interface objects (rbla.interface) and load
+  points (rbla.load); object and Document User Text rbla.* as in docs/cad-attributes.md.
+  --unit-weight, --friction and --title override rbla.default_unit_weight, rbla.default_friction
+  and rbla.title. Every error is listed and nothing is written when there is one (exit 1).`;
 
 main(async () => {
   let args;
@@ -15,15 +19,20 @@ main(async () => {
   } catch (e) { throw usageError(e.message); }
   if (args.help) { console.log(USAGE); return 0; }
   if (args._.length !== 1 || !args.out) throw usageError('need one input .3dm and -o MODEL.json');
+  const unitWeight = numberOpt(args.unitWeight, '--unit-weight');
+  const friction = numberOpt(args.friction, '--friction');
   const bytes = new Uint8Array(fs.readFileSync(args._[0]));
   const doc = await readFile3dm(bytes);
-  const { model, warnings } = await file3dmToModel(doc, {
-    unitWeight: numberOpt(args.unitWeight, '--unit-weight'),
-    friction: numberOpt(args.friction, '--friction'),
-    title: args.title,
+  const { model, warnings, errors } = await file3dmToModel(doc, {
+    unitWeight, friction, title: args.title, name: path.basename(args._[0]).replace(/\.3dm$/i, ''),
   });
-  for (const w of warnings) process.stderr.write(`warning: ${w}\n`);
-  fs.writeFileSync(args.out, JSON.stringify(model, null, 1) + '\n');
-  process.stderr.write(`wrote ${args.out}: ${model.blocks.length} blocks, units ${model.units.length}\n`);
+  for (const w of warnings) process.stderr.write(`warning [${w.code}]: ${w.text}\n`);
+  if (errors.length) {
+    for (const e of errors) process.stderr.write(`error [${e.code}]: ${e.text}\n`);
+    process.stderr.write(`${args._[0]}: ${errors.length} error(s); no model written\n`);
+    return 1;
+  }
+  writeFileAtomic(args.out, JSON.stringify(model, null, 1) + '\n');
+  process.stderr.write(`wrote ${args.out}: ${model.blocks.length} blocks, ${(model.interfaces || []).length} interfaces given, units ${model.units.length}\n`);
   return 0;
 }, USAGE);

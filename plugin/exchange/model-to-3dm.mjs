@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // Write an rbla model JSON as a .3dm: blocks as closed Breps (default) or meshes, with User Text.
 import fs from 'node:fs';
-import { parseArgs, main, usageError } from './lib/cli.mjs';
+import { parseArgs, main, usageError, writeFileAtomic } from './lib/cli.mjs';
 import { modelTo3dm } from './lib/rhino-io.mjs';
 
 const USAGE = `usage: model-to-3dm.mjs MODEL.json -o OUT.3dm [--as brep|mesh]`;
@@ -15,7 +15,7 @@ main(async () => {
   if (!['brep', 'mesh'].includes(as)) throw usageError('--as must be brep or mesh');
   const model = JSON.parse(fs.readFileSync(args._[0], 'utf8'));
   const doc = await modelTo3dm(model, { as });
-  fs.writeFileSync(args.out, doc.toByteArray());
+  writeFileAtomic(args.out, doc.toByteArray());
   process.stderr.write(`wrote ${args.out}: ${model.blocks.length} blocks as ${as === "brep" ? "Breps" : "meshes"}\n`);
   return 0;
 }, USAGE);

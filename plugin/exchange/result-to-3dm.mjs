@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // Write an rbla result as a .3dm that Rhino opens without any plugin.
 import fs from 'node:fs';
-import { parseArgs, numberOpt, main, usageError } from './lib/cli.mjs';
+import { parseArgs, numberOpt, main, usageError, writeFileAtomic } from './lib/cli.mjs';
 import { resultTo3dm } from './lib/rhino-io.mjs';
 
 const USAGE = `usage: result-to-3dm.mjs MODEL.json RESULT.json -o OUT.3dm [--amplitude S] [--run-name NAME]
@@ -16,7 +16,7 @@ main(async () => {
   const model = JSON.parse(fs.readFileSync(args._[0], 'utf8'));
   const result = JSON.parse(fs.readFileSync(args._[1], 'utf8'));
   const { doc, parentName, amplitude, counts } = await resultTo3dm(model, result, { amplitude: numberOpt(args.amplitude, '--amplitude'), runName: args.runName });
-  fs.writeFileSync(args.out, doc.toByteArray());
+  writeFileAtomic(args.out, doc.toByteArray());
   process.stderr.write(`wrote ${args.out}: layer "${parentName}", amplitude ${amplitude}, interfaces ${JSON.stringify(counts)}\n`);
   return 0;
 }, USAGE);

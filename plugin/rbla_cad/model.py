@@ -30,8 +30,9 @@ otherwise, so the solver still detects the contacts the user did not label.
 
 Friction. The schema has friction on interfaces and a model default only. ``add_block(...,
 friction=mu)`` is accepted for CAD convenience: a given interface without its own friction takes
-the smaller of its two blocks' values; detected interfaces take ``defaults.friction`` (a
-warning in ``builder.warnings`` says so when block frictions cannot reach them).
+the smaller of its two blocks' values; the interfaces the solver detects share one friction,
+``defaults.friction``, which is then the smallest of the model default and every block value
+(``detected_friction``; a warning in ``builder.warnings`` says so).
 """
 
 import json
@@ -39,6 +40,7 @@ import math
 import os
 
 from . import geometry as geo
+from . import usertext
 
 SCHEMA_VERSION = "1.0.0"
 
@@ -51,22 +53,26 @@ FRICTION_MODELS = ("associative", "non_associative")
 CONES = ("exact", "pyramid_inscribed", "pyramid_circumscribed")
 FORMULATIONS = ("auto", "3d", "planar")
 DETECTION_MODES = ("auto", "off", "merge")
+DEFAULT_FRICTION = usertext.KEYS["document"]["rbla.default_friction"]["default"]
 
-# Host length-unit names (Rhino's UnitSystem names and common abbreviations) -> (schema unit,
-# factor that multiplies a host coordinate to get it in the schema unit).
-_HOST_LENGTH = {
-    "mm": ("mm", 1.0), "millimeter": ("mm", 1.0), "millimeters": ("mm", 1.0),
-    "millimetre": ("mm", 1.0), "millimetres": ("mm", 1.0),
-    "cm": ("cm", 1.0), "centimeter": ("cm", 1.0), "centimeters": ("cm", 1.0),
-    "centimetre": ("cm", 1.0), "centimetres": ("cm", 1.0),
-    "m": ("m", 1.0), "meter": ("m", 1.0), "meters": ("m", 1.0), "metre": ("m", 1.0),
-    "metres": ("m", 1.0),
-    "dm": ("cm", 10.0), "decimeter": ("cm", 10.0), "decimeters": ("cm", 10.0),
-    "km": ("m", 1000.0), "kilometer": ("m", 1000.0), "kilometers": ("m", 1000.0),
-    "in": ("mm", 25.4), "inch": ("mm", 25.4), "inches": ("mm", 25.4),
-    "ft": ("mm", 304.8), "foot": ("mm", 304.8), "feet": ("mm", 304.8),
-    "yd": ("mm", 914.4), "yard": ("mm", 914.4), "yards": ("mm", 914.4),
+# Host length-unit names -> the Rhino UnitSystem name whose model unit and factor the CAD
+# attribute convention gives (data/cad_attributes.json, "length_units": the one table of them).
+_HOST_LENGTH_NAMES = {
+    "mm": "Millimeters", "millimeter": "Millimeters", "millimetre": "Millimeters",
+    "millimetres": "Millimeters",
+    "cm": "Centimeters", "centimeter": "Centimeters", "centimetre": "Centimeters",
+    "centimetres": "Centimeters",
+    "m": "Meters", "meter": "Meters", "metre": "Meters", "metres": "Meters",
+    "dm": "Decimeters", "decimeter": "Decimeters",
+    "km": "Kilometers", "kilometer": "Kilometers",
+    "um": "Microns", "micron": "Microns", "micrometer": "Microns",
+    "in": "Inches", "inch": "Inches",
+    "ft": "Feet", "foot": "Feet",
+    "yd": "Yards", "yard": "Yards",
 }
+_LENGTH_UNITS = dict((k.lower(), (v[0], float(v[1])))
+                     for k, v in usertext.DATA["length_units"].items()
+                     if not k.startswith("$") and k != "None")
 
 _FORCE_ALIASES = {"n": "N", "newton": "N", "newtons": "N", "kn": "kN", "kilonewton": "kN",
                   "kilonewtons": "kN", "mn": "MN", "meganewton": "MN", "meganewtons": "MN"}
@@ -91,16 +97,17 @@ def host_length_unit(name):
     """Map a host unit name ("Millimeters", "m", "Inches", ...) to (schema unit, scale).
 
     ``scale`` multiplies host coordinates to get schema coordinates (1 for mm, cm and m; inches
-    and feet are written in mm, kilometres in m). Raises ModelError for unknown or unitless
-    systems (Rhino "None", "Microns", ...)."""
+    and feet are written in mm, kilometres in m; the table is the CAD attribute convention's).
+    Raises ModelError for unknown or unitless systems (Rhino "None", "Parsecs", ...)."""
     key = str(name).strip().lower()
     if key.startswith("unitsystem."):
         key = key[len("unitsystem."):]
-    if key not in _HOST_LENGTH:
+    key = _HOST_LENGTH_NAMES.get(key, _HOST_LENGTH_NAMES.get(key.rstrip("s"), key)).lower()
+    if key not in _LENGTH_UNITS:
         raise ModelError("unsupported length unit %r: use millimetres, centimetres or metres "
-                         "(inches, feet, yards, decimetres and kilometres are converted)" % (name,),
-                         pointer="/units/length")
-    return _HOST_LENGTH[key]
+                         "(microns, decimetres, kilometres, inches, feet and yards are "
+                         "converted)" % (name,), pointer="/units/length")
+    return _LENGTH_UNITS[key]
 
 
 def force_unit(name):
@@ -450,7 +457,10 @@ class ModelBuilder(object):
                 raise ModelError("settlement direction must not be zero",
                                  pointer="/analysis/settlement/direction")
             st["direction"] = d
-        self.analysis["settlement"] = st
+        if st:
+            self.analysis["settlement"] = st
+        else:
+            self.analysis.pop("settlement", None)
 
     def set_analysis(self, friction_model=None, cone=None, pyramid_faces=None, formulation=None,
                      time_limit=None, relative_gap=None, feasibility=None,
@@ -544,6 +554,36 @@ class ModelBuilder(object):
                              if len(issues) > 1 else issues[0][2], issues=issues)
 
     # ---------------------------------------------------------------------------------- output
+    def detects(self):
+        """Whether the solver will detect interfaces (detection mode, given interfaces)."""
+        mode = self.detection.get("mode") or ("merge" if self.interfaces else "auto")
+        return mode == "merge" or (mode == "auto" and not self.interfaces)
+
+    def detected_friction(self):
+        """(mu, base): the friction of the interfaces the solver detects, and the model default.
+
+        The model has one friction for detected interfaces. Blocks given a friction of their own
+        (CAD convenience) cannot pass it on to them, so detected interfaces take the smallest of
+        the default and every block value: a lower friction never raises the collapse
+        multiplier of an associative analysis, so the answer errs on the safe side."""
+        base = self.default_friction if self.default_friction is not None else DEFAULT_FRICTION
+        if not self._block_friction or not self.detects():
+            return base, base
+        return min([base] + list(self._block_friction.values())), base
+
+    def _interface_out(self, itf, lowered, base):
+        """An interface as written: without a friction of its own it takes the smaller of its
+        blocks' values, else the model default as it was before detected_friction lowered it."""
+        itf = dict(itf)
+        if "friction" not in itf:
+            mus = [self._block_friction[b] for b in itf.get("blocks", [])
+                   if b in self._block_friction]
+            if mus:
+                itf["friction"] = min(mus)
+            elif lowered:
+                itf["friction"] = base
+        return itf
+
     def to_dict(self, check=True, validate_schema=True):
         """The model document (a dict ready for json.dump). Runs ``check()`` and the schema
         validation unless told not to."""
@@ -555,11 +595,12 @@ class ModelBuilder(object):
         doc["units"] = {"length": self.length, "force": self.force,
                         "unit_weight": self.unit_weight_unit}
         doc["gravity"] = self.gravity
+        mu, base = self.detected_friction()
         defaults = {}
         if self.default_unit_weight is not None:
             defaults["unit_weight"] = self.default_unit_weight
-        if self.default_friction is not None:
-            defaults["friction"] = self.default_friction
+        if mu < base or self.default_friction is not None:
+            defaults["friction"] = mu
         if defaults:
             doc["defaults"] = defaults
         doc["blocks"] = [dict(b) for b in self.blocks]
@@ -571,26 +612,19 @@ class ModelBuilder(object):
                 self.warnings.append("role: moving supports %s are held fixed: the analysis is "
                                      "not a settlement analysis" % ", ".join(held[:5]))
         if self.interfaces:
-            itfs = []
-            for itf in self.interfaces:
-                itf = dict(itf)
-                if "friction" not in itf:
-                    mus = [self._block_friction[b] for b in itf["blocks"]
-                           if b in self._block_friction]
-                    if mus:
-                        itf["friction"] = min(mus)
-                itfs.append(itf)
-            doc["interfaces"] = itfs
+            doc["interfaces"] = [self._interface_out(itf, mu < base, base)
+                                 for itf in self.interfaces]
         detection = dict(self.detection)
         if self.interfaces and "mode" not in detection:
             detection["mode"] = "merge"
         if detection:
             doc["detection"] = detection
-        if self._block_friction and (not self.interfaces or detection.get("mode") == "merge"):
+        if self._block_friction and self.detects():
             self.warnings.append(
-                "friction: block friction values apply only to the interfaces given in the "
-                "model; interfaces the solver detects use the default friction (%s)"
-                % (self.default_friction if self.default_friction is not None else 0.6))
+                "friction: block friction values (%s) apply to the given interfaces touching "
+                "those blocks; the interfaces the solver detects all use %s"
+                % (", ".join(usertext.fmt(v) for v in sorted(set(self._block_friction.values()))),
+                   usertext.fmt(mu)))
         loads = {}
         if self.dead_loads:
             loads["dead"] = [dict(x) for x in self.dead_loads]

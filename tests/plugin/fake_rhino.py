@@ -118,7 +118,14 @@ class Mesh(object):
 
     @property
     def IsClosed(self):
-        return True
+        """Every edge (between coordinates) is used by exactly two faces."""
+        v, f = self._vf()
+        count = {}
+        for face in f:
+            for j in range(len(face)):
+                e = tuple(sorted((tuple(v[face[j]]), tuple(v[face[(j + 1) % len(face)]]))))
+                count[e] = count.get(e, 0) + 1
+        return bool(count) and all(c == 2 for c in count.values())
 
     def SolidOrientation(self):
         v, f = self._vf()
@@ -150,6 +157,37 @@ class Mesh(object):
         v, _ = self._vf()
         lo, hi = geo.bounding_box(v)
         return all(lo[i] - tol <= c <= hi[i] + tol for i, c in enumerate((p.X, p.Y, p.Z)))
+
+
+class Point(object):
+    """A point object's geometry."""
+
+    def __init__(self, x, y, z):
+        self.Location = Point3d(x, y, z)
+
+
+class Curve(object):
+    pass
+
+
+class PolylineCurve(Curve):
+    """A polyline curve; closed when its last point repeats the first."""
+
+    def __init__(self, pts):
+        self.pts = [Point3d(*p) for p in pts]
+
+    @property
+    def IsClosed(self):
+        return len(self.pts) > 3 and self.pts[0].DistanceTo(self.pts[-1]) == 0.0
+
+    def IsPlanar(self, tol):
+        from rbla_cad import polygons
+        pts = [(p.X, p.Y, p.Z) for p in self.pts]
+        n, area = polygons.unit_normal(pts)
+        return area > 0 and all(abs(geo.dot(geo.sub(p, pts[0]), n)) <= tol for p in pts)
+
+    def TryGetPolyline(self):
+        return True, Polyline(self.pts)
 
 
 class VolumeMassProperties(object):
@@ -206,6 +244,7 @@ class Layer(object):
         self.ParentLayerId = None
         self.Id = object()
         self.FullPath = ""
+        self.IsVisible = True
 
 
 class _Layers(list):
@@ -225,16 +264,17 @@ class _Layers(list):
 class RhinoObject(object):
     _n = 0
 
-    def __init__(self, geometry, attributes):
+    def __init__(self, geometry, attributes, guid=None):
         RhinoObject._n += 1
-        self.Id = "guid-%d" % RhinoObject._n
+        self.Id = guid or "guid-%d" % RhinoObject._n
         self.Geometry = geometry
         self.Attributes = attributes
+        self.IsHidden = False
 
 
 class _Objects(list):
-    def _add(self, g, a):
-        o = RhinoObject(g, a or ObjectAttributes())
+    def _add(self, g, a, guid=None):
+        o = RhinoObject(g, a or ObjectAttributes(), guid)
         self.append(o)
         return o.Id
 
@@ -322,9 +362,10 @@ def mesh_box(x0, x1, y0, y1, z0, z1):
 def install():
     rhino = types.ModuleType("Rhino")
     rg = types.ModuleType("Rhino.Geometry")
-    for cls in (Point3d, Vector3d, Polyline, Mesh, VolumeMassProperties, TextDot, Transform):
+    for cls in (Point3d, Vector3d, Polyline, Mesh, VolumeMassProperties, TextDot, Transform,
+                Point, Curve, PolylineCurve):
         setattr(rg, cls.__name__, cls)
-    for name in ("Brep", "Extrusion", "Surface", "Curve", "Point", "SubD"):
+    for name in ("Brep", "Extrusion", "Surface", "SubD"):
         setattr(rg, name, type(name, (_Unused,), {}))
     rg.BrepSolidOrientation = types.SimpleNamespace(Inward=-1, Outward=1)
     rg.MeshingParameters = types.SimpleNamespace(QualityRenderMesh=None)
@@ -356,3 +397,17 @@ def uninstall():
         if name in ("Rhino", "Rhino.Geometry", "Rhino.DocObjects", "System", "scriptcontext") \
                 or name == "rbla_rhino" or name.startswith("rbla_rhino."):
             del sys.modules[name]
+
+def mesh_of(vertices, faces):
+    """A mesh of a polyhedron or of open pieces: triangles and quads as they are, larger
+    faces as fans of triangles (the cases use convex ones)."""
+    m = Mesh()
+    for p in vertices:
+        m.Vertices.Add(*p)
+    for face in faces:
+        if len(face) <= 4:
+            m.Faces.AddFace(*face)
+        else:
+            for k in range(1, len(face) - 1):
+                m.Faces.AddFace(face[0], face[k], face[k + 1])
+    return m

@@ -59,10 +59,44 @@ class AdapterTest(unittest.TestCase):
         _obj(doc, fr.mesh_box(5, 6, 5, 6, 1, 2), "block")   # name used twice -> GUID ids
         col = self.document.collect_model(doc)
         self.assertEqual(len(col.issues), 1)
-        self.assertIn("'Stone 7'", col.issues[0])
+        self.assertIn('object "Stone 7": rbla.role', col.issues[0])
+        self.assertEqual(col.model, None)
+        self.assertIn("duplicate_name", [m.code for m in col.messages])
         doc.Strings.SetString("rbla.analysis", "wind")
         col = self.document.collect_model(doc)
         self.assertIn("rbla.analysis", col.issues[0])
+
+    def test_export_command(self):
+        """RblaExport: warnings and every error with their codes; nothing written on an error;
+        the model written next to the document otherwise."""
+        import os
+        import sys
+        import tempfile
+        from rbla_rhino import commands
+        lines = []
+        app = sys.modules["Rhino"].RhinoApp
+        old, app.WriteLine = app.WriteLine, lines.append
+        try:
+            doc = self.make_doc()
+            _obj(doc, fr.mesh_box(5, 6, 5, 6, 0, 1), "stone", rbla_rol="free")
+            doc.Strings.SetString("rbla.seismic_direction", "0, 0, 1")
+            with tempfile.TemporaryDirectory() as d:
+                doc.Path = os.path.join(d, "vault.3dm")
+                self.assertIsNone(commands._export(doc))
+                self.assertIn('rbla: warning [unknown_key]: object "stone": unknown key rbla.rol '
+                              'ignored; did you mean rbla.role?', lines)
+                self.assertIn("  error [not_horizontal]: document: rbla.seismic_direction must "
+                              "be perpendicular to gravity (-z), got \"0, 0, 1\"", lines)
+                self.assertFalse(os.path.exists(os.path.join(d, "vault_rbla", "model.json")))
+                doc.Strings.SetString("rbla.seismic_direction", "0, 1, 0")
+                model, path, col = commands._export(doc)
+                self.assertEqual(path, os.path.join(d, "vault_rbla", "model.json"))
+                with open(path) as f:
+                    self.assertEqual(json.load(f), model)
+                self.assertEqual(model["title"], "test")
+                self.assertEqual(model["analysis"]["seismic"]["direction"], [0.0, 1.0, 0.0])
+        finally:
+            app.WriteLine = old
 
     def test_collect_millimetres(self):
         doc = self.make_doc("Millimeters", 1000.0)

@@ -98,13 +98,22 @@ class BuildTest(unittest.TestCase):
                                          [0, 0.5, 1.5]], label="mortar joint")
         mb.add_interface(["B1", "B2"], [[0, 0, 1], [0.5, 0, 1], [0.5, 0.5, 1]], id="J1",
                          friction=0.3)
+        mb.add_interface(["B0", "B1"], [[0, 0, 0.5], [0.5, 0, 0.5], [0.5, 0.5, 0.5]])
         doc = mb.to_dict()
         self.assertEqual(doc["detection"], {"mode": "merge"})
         self.assertEqual(doc["interfaces"][0]["friction"], 0.4)   # min of the blocks given
         self.assertEqual(doc["interfaces"][0]["label"], "mortar joint")
         self.assertEqual(doc["interfaces"][1]["friction"], 0.3)
-        self.assertEqual(doc["defaults"]["friction"], 0.7)
+        # the detected interfaces take the smallest block value (the model has one friction
+        # for them); a given interface between blocks without one keeps the model default
+        self.assertEqual(doc["defaults"]["friction"], 0.4)
+        self.assertEqual(doc["interfaces"][2]["friction"], 0.7)
         self.assertTrue(any(w.startswith("friction:") for w in mb.warnings))
+        mb.set_detection(mode="off")     # no detected interfaces: the default stays
+        doc = mb.to_dict()
+        self.assertEqual(doc["defaults"]["friction"], 0.7)
+        self.assertNotIn("friction", doc["interfaces"][2])
+        self.assertFalse(any(w.startswith("friction:") for w in mb.warnings))
 
     def test_settlement_and_live_loads(self):
         mb = ModelBuilder()
@@ -137,8 +146,10 @@ class UnitsTest(unittest.TestCase):
         self.assertEqual(host_length_unit("Inches"), ("mm", 25.4))
         self.assertEqual(force_unit("newtons"), "N")
         self.assertEqual(force_unit("kN"), "kN")
+        self.assertEqual(host_length_unit("Microns"), ("mm", 0.001))
+        self.assertEqual(host_length_unit("feet"), ("mm", 304.8))
         with self.assertRaises(ModelError) as cm:
-            host_length_unit("Microns")
+            host_length_unit("Parsecs")
         self.assertEqual(cm.exception.pointer, "/units/length")
         with self.assertRaises(ModelError):
             force_unit("lbf")

@@ -137,18 +137,23 @@ for (const { sample, as } of CASES) {
   });
 }
 
+/** model -> model-to-3dm -> 3dm-to-model (with extra arguments): { src, out, back, stderr }. */
+function roundTrip(model, name, args = []) {
+  const src = path.join(dir, `${name}.json`);
+  fs.writeFileSync(src, JSON.stringify(model));
+  const f3dm = path.join(dir, `${name}.3dm`);
+  let r = node('model-to-3dm.mjs', [src, '-o', f3dm]);
+  assert.equal(r.code, 0, r.stderr);
+  const out = path.join(dir, `${name}.back.json`);
+  r = node('3dm-to-model.mjs', [f3dm, '-o', out, ...args]);
+  assert.equal(r.code, 0, r.stderr);
+  return { src, out, back: readJson(out), stderr: r.stderr };
+}
+
 test('document units: millimetres survive the round trip', async () => {
   const orig = readJson(path.join(SAMPLES, 'column.json'));
   const mm = { ...orig, units: { ...orig.units, length: 'mm' }, blocks: orig.blocks.map((b) => ({ ...b, vertices: b.vertices.map((p) => p.map((x) => x * 1000)), centroid: undefined, volume: undefined })) };
-  const src = path.join(dir, 'column_mm.json');
-  fs.writeFileSync(src, JSON.stringify(mm));
-  const f3dm = path.join(dir, 'column_mm.3dm');
-  let r = node('model-to-3dm.mjs', [src, '-o', f3dm]);
-  assert.equal(r.code, 0, r.stderr);
-  const out = path.join(dir, 'column_mm.back.json');
-  r = node('3dm-to-model.mjs', [f3dm, '-o', out, '--friction', '0.5', '--unit-weight', '20']);
-  assert.equal(r.code, 0, r.stderr);
-  const back = readJson(out);
+  const { back } = roundTrip(mm, 'column_mm', ['--friction', '0.5', '--unit-weight', '20']);
   assert.equal(back.units.length, 'mm');
   assert.deepEqual(back.defaults, { unit_weight: 20, friction: 0.5 });
   assertSameGeometry(mm, back);
@@ -192,9 +197,93 @@ test('User Text and extrusions: roles, unit weight, label, friction from object 
   assert.ok(Math.abs(pent.volume - (40 * 30 + 0.5 * 40 * 20) * 60) < 1e-6, `pentagon volume ${pent.volume}`);
   assert.equal(m.blocks[1].unit_weight, 22);
   assert.equal(m.blocks[1].label, 'lintel stone');
-  assert.equal(m.defaults.friction, 0.7);
+  // a block's friction cannot reach the interfaces rbla detects (the model has one friction for
+  // them): they take the smallest of the default (0.6) and the block values, with a warning
+  assert.equal(m.defaults?.friction, undefined);
+  assert.match(r.stderr, /warning \[block_friction\]: 1 block\(s\) carry rbla.friction \(0.7\).* all use 0.6/);
   assert.ok(Math.abs(m.blocks[1].volume - 40 * 40 * 80) < 1e-6);
   assert.ok(validators().model(m).ok);
+});
+
+/** A .3dm of a base and a 1 x 0.5 x 2 block, with the given document and object User Text. */
+async function twoBlocks3dm(file, { docText = {}, baseText = {}, blockText = {}, extra = null } = {}) {
+  const rhino = await loadRhino();
+  const doc = new rhino.File3dm();
+  doc.settings().modelUnitSystem = rhino.UnitSystem.Meters;
+  for (const [k, v] of Object.entries(docText)) doc.strings().set(k, v);
+  const attr = (name, text) => { const a = new rhino.ObjectAttributes(); a.name = name; for (const [k, v] of Object.entries(text)) a.setUserString(k, v); return a; };
+  doc.objects().add(rhino.Brep.createFromBoundingBox(new rhino.BoundingBox([-2, -2, -0.5], [2, 2, 0])), attr('base', baseText));
+  doc.objects().add(rhino.Brep.createFromBoundingBox(new rhino.BoundingBox([-0.5, -0.25, 0], [0.5, 0.25, 2])), attr('block', blockText));
+  if (extra) extra(rhino, doc, attr);
+  fs.writeFileSync(file, doc.toByteArray());
+}
+
+test('the reported case through the command line: seismic along +y, default friction, support, rbla.id, rbla.ignore', { skip: rblaExe() ? false : 'no rbla binary (set RBLA_EXE)' }, async () => {
+  const f = path.join(dir, 'issue.3dm');
+  await twoBlocks3dm(f, {
+    docText: { 'rbla.analysis': 'seismic', 'rbla.seismic_direction': '0, 1, 0', 'rbla.default_friction': '0.3' },
+    baseText: { 'rbla.role': 'support' },
+    blockText: { 'rbla.id': 'B1' },
+    extra: (rhino, doc, attr) => doc.objects().add(rhino.Brep.createFromBoundingBox(new rhino.BoundingBox([5, 5, 0], [6, 6, 1])), attr('scrap', { 'rbla.ignore': 'true' })),
+  });
+  const out = path.join(dir, 'issue.json');
+  const r = node('3dm-to-model.mjs', [f, '-o', out]);
+  assert.equal(r.code, 0, r.stderr);
+  assert.doesNotMatch(r.stderr, /warning|not valid JSON/);
+  const m = readJson(out);
+  assert.deepEqual(m.analysis, { type: 'load_multiplier', seismic: { direction: [0, 1, 0] } });
+  assert.deepEqual(m.defaults, { friction: 0.3 });
+  assert.deepEqual(m.blocks.map((b) => [b.id, b.role]), [['base', 'fixed'], ['B1', 'free']]);
+  assert.equal(m.title, 'issue');
+  // rocking about a y edge: alpha = b / h = 0.5 / 2 (sliding would need alpha > mu = 0.3)
+  const res = solve(out, path.join(dir, 'issue.result.json'));
+  assert.ok(Math.abs(res.load_multiplier - 0.25) < 1e-6, `alpha ${res.load_multiplier}`);
+});
+
+test('unreadable attributes: every error listed with its code, nothing written, an existing file kept', async () => {
+  const f = path.join(dir, 'bad.3dm');
+  await twoBlocks3dm(f, { docText: { 'rbla.seismic_direction': '0, 0, 1' }, baseText: { 'rbla.role': 'floating' }, blockText: { 'rbla.friction': 'high', 'rbla.rol': 'x' } });
+  const out = path.join(dir, 'bad.json');
+  fs.writeFileSync(out, 'keep me');
+  const r = node('3dm-to-model.mjs', [f, '-o', out]);
+  assert.equal(r.code, 1);
+  assert.match(r.stderr, /error \[bad_choice\]: object "base": rbla.role must be one of free, fixed, moving_support, got "floating"/);
+  assert.match(r.stderr, /error \[bad_number\]: object "block": rbla.friction must be a number, got "high"/);
+  assert.match(r.stderr, /error \[not_horizontal\]: document: rbla.seismic_direction must be perpendicular to gravity/);
+  assert.match(r.stderr, /warning \[unknown_key\]: object "block": unknown key rbla.rol ignored; did you mean rbla.role\?/);
+  assert.match(r.stderr, /3 error\(s\); no model written/);
+  assert.equal(fs.readFileSync(out, 'utf8'), 'keep me');
+  assert.deepEqual(fs.readdirSync(dir).filter((x) => x.startsWith('bad.json.tmp')), []);
+});
+
+test('model -> .3dm -> model keeps given interfaces, loads, analysis and detection settings', { skip: rblaExe() ? false : 'no rbla binary (set RBLA_EXE)' }, async () => {
+  const orig = readJson(path.join(SAMPLES, 'column.json'));
+  const top = orig.blocks.at(-1);
+  const zTop = Math.max(...top.vertices.map((v) => v[2]));
+  const below = orig.blocks.at(-2);
+  const zJoint = Math.min(...top.vertices.map((v) => v[2]));
+  const xs = top.vertices.map((v) => v[0]), ys = top.vertices.map((v) => v[1]);
+  const [x0, x1, y0, y1] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
+  const model = {
+    ...orig,
+    interfaces: [{ id: 'J1', label: 'top joint', blocks: [below.id, top.id], friction: 0.5, polygon: [[x0, y0, zJoint], [x1, y0, zJoint], [x1, y1, zJoint], [x0, y1, zJoint]] }],
+    detection: { mode: 'merge', angle_tolerance: 2 },
+    loads: { live: [{ block: top.id, force: [1, 0, 0], point: [(x0 + x1) / 2, (y0 + y1) / 2, zTop] }], dead: [{ block: top.id, force: [0, 0, -3] }] },
+    analysis: { type: 'load_multiplier', cone: 'pyramid_inscribed', pyramid_faces: 16 },
+  };
+  const { src, out, back, stderr } = roundTrip(model, 'column_loads');
+  assert.doesNotMatch(stderr, /warning/);
+  assert.deepEqual(back.interfaces, model.interfaces);
+  assert.deepEqual(back.detection, model.detection);
+  assert.deepEqual(back.analysis, model.analysis);
+  assert.deepEqual(back.loads.live, model.loads.live);
+  const g = G.polyhedronMassProps(top.vertices, top.faces).centroid; // a dead load without a point acts at the centroid
+  assert.equal(back.loads.dead[0].block, top.id);
+  for (let c = 0; c < 3; c++) assert.ok(Math.abs(back.loads.dead[0].point[c] - g[c]) < 1e-9);
+  assert.ok(validators().model(back).ok);
+  const a0 = solve(src, path.join(dir, 'cl0.result.json')).load_multiplier;
+  const a1 = solve(out, path.join(dir, 'cl1.result.json')).load_multiplier;
+  assert.ok(Math.abs(a0 - a1) <= 1e-6 * Math.abs(a0), `${a0} vs ${a1}`);
 });
 
 test('a curved Brep (sphere) is rejected by name with a non-zero exit', async () => {

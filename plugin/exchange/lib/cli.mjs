@@ -1,4 +1,5 @@
 // Minimal argument parsing shared by the exchange command-line scripts.
+import fs from 'node:fs';
 export function parseArgs(argv, spec) {
   // spec: { positional: n, options: { '-o': 'out', '--amplitude': 'amplitude', ... }, flags: {...} }
   const out = { _: [] };
@@ -39,3 +40,15 @@ export async function main(fn, usage) {
 }
 
 export function usageError(msg) { const e = new Error(msg); e.usage = true; return e; }
+
+/** Write a file whole or not at all: a temporary file next to it, renamed into place. */
+export function writeFileAtomic(file, data) {
+  const tmp = `${file}.tmp${process.pid}`;
+  try {
+    fs.writeFileSync(tmp, data);
+    fs.renameSync(tmp, file);
+  } catch (e) {
+    try { fs.unlinkSync(tmp); } catch { /* nothing was written */ }
+    throw e;
+  }
+}

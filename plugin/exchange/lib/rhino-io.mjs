@@ -2,9 +2,12 @@
 // No Rhino installation is needed.
 import rhino3dm from 'rhino3dm';
 import {
-  STATE_COLORS, STATE_ORDER, hexToRgb, newellNormal, triangulatePolygon, polyhedronMassProps,
-  rigidMotion, resultBlockMap, headline, fmt, sub, dot, cross, norm, interfacePolygon,
+  STATE_COLORS, STATE_ORDER, hexToRgb, triangulatePolygon, polyhedronMassProps,
+  rigidMotion, resultBlockMap, headline, norm, interfacePolygon,
 } from './rbla-geometry.mjs';
+import { documentRecord } from './rhino-records.mjs';
+import { readDocument } from './cad-reader.mjs';
+import { ALIASES } from './cad-attributes.mjs';
 
 let rhinoPromise = null;
 export function loadRhino() {
@@ -14,21 +17,7 @@ export function loadRhino() {
 
 export class ExchangeError extends Error {}
 
-// --- units ----------------------------------------------------------------------------------
-const UNIT_TO_METRES = {
-  Millimeters: 1e-3, Centimeters: 1e-2, Meters: 1, Decimeters: 0.1, Kilometers: 1e3,
-  Microns: 1e-6, Inches: 0.0254, Feet: 0.3048, Yards: 0.9144,
-};
-const RBLA_UNITS = { Millimeters: 'mm', Centimeters: 'cm', Meters: 'm' };
 const RBLA_TO_RHINO = { mm: 'Millimeters', cm: 'Centimeters', m: 'Meters' };
-
-function unitName(rhino, value) {
-  for (const k of Object.keys(rhino.UnitSystem)) {
-    if (k === 'values' || k === 'argCount') continue;
-    if (rhino.UnitSystem[k] === value || rhino.UnitSystem[k]?.value === value?.value) return k;
-  }
-  return 'None';
-}
 
 const colorObj = (hex, a = 255) => ({ ...hexToRgb(hex), a });
 
@@ -51,10 +40,105 @@ function meshFromPolyhedron(rhino, vertices, faces) {
   return mesh;
 }
 
+const num = (x) => String(x);
+const vec = (v) => v.map(num).join(', ');
+const pairText = (ids) => ids.join(ids.some((b) => b.includes(',')) ? '; ' : ', ');
+
+/** Analysis settings as convention keys, or null when the model's analysis needs the JSON form. */
+function analysisKeys(a, hasLive) {
+  const plain = ['type', 'seismic', 'settlement', 'friction_model', 'cone', 'pyramid_faces', 'formulation', 'time_limit'];
+  if (Object.keys(a).some((k) => !plain.includes(k))) return null;
+  const out = {};
+  if (a.type === 'settlement') {
+    out['rbla.analysis'] = 'settlement';
+    if (a.settlement?.direction) out['rbla.settlement_direction'] = vec(a.settlement.direction);
+  } else if (a.seismic) {
+    out['rbla.analysis'] = 'seismic';
+    out['rbla.seismic_direction'] = vec(a.seismic.direction);
+  } else if (hasLive) {
+    out['rbla.analysis'] = 'live';
+  } else return null;
+  for (const k of plain.slice(3)) if (a[k] !== undefined) out[`rbla.${k}`] = num(a[k]);
+  return out;
+}
+
+/** Detection settings as convention keys (or the JSON form for settings without a key). */
+function detectionKeys(d, hasInterfaces) {
+  const out = {};
+  const det = { ...(d || {}) };
+  if (hasInterfaces && !det.mode) det.mode = 'auto'; // the model's default; the reader's would be merge
+  if (Object.keys(det).some((k) => !['mode', 'distance_tolerance', 'angle_tolerance'].includes(k))) return { 'rbla.detection': JSON.stringify(det) };
+  if (det.mode) out['rbla.detection'] = det.mode;
+  if (det.distance_tolerance !== undefined) out['rbla.distance_tolerance'] = num(det.distance_tolerance);
+  if (det.angle_tolerance !== undefined) out['rbla.angle_tolerance'] = num(det.angle_tolerance);
+  return out;
+}
+
+/** The Document User Text that says what the model says (the CAD attribute convention). */
+export function documentUserText(model) {
+  const out = {};
+  if (model.title) out['rbla.title'] = model.title;
+  if (model.units?.force) out['rbla.force_unit'] = model.units.force;
+  if (model.units?.unit_weight) out['rbla.unit_weight_unit'] = model.units.unit_weight;
+  if (model.gravity) out['rbla.gravity'] = model.gravity;
+  if (model.defaults?.unit_weight !== undefined) out['rbla.default_unit_weight'] = num(model.defaults.unit_weight);
+  if (model.defaults?.friction !== undefined) out['rbla.default_friction'] = num(model.defaults.friction);
+  if (model.analysis) {
+    const keys = analysisKeys(model.analysis, (model.loads?.live || []).length > 0);
+    Object.assign(out, keys ?? { 'rbla.analysis': JSON.stringify(model.analysis) });
+  }
+  Object.assign(out, detectionKeys(model.detection, (model.interfaces || []).length > 0));
+  return out;
+}
+
+function addLayers(rhino, doc, spec) {
+  const out = {};
+  for (const [key, name, hex] of spec) {
+    const layer = new rhino.Layer();
+    layer.name = name;
+    layer.color = colorObj(hex);
+    out[key] = doc.layers().add(layer);
+  }
+  return out;
+}
+
+function userAttr(rhino, layerIndex, name, keys) {
+  const attr = new rhino.ObjectAttributes();
+  if (name) attr.name = name;
+  attr.layerIndex = layerIndex;
+  for (const [k, v] of Object.entries(keys)) attr.setUserString(k, v);
+  return attr;
+}
+
+function addInterfaceObjects(rhino, doc, model, layer) {
+  for (const itf of model.interfaces || []) {
+    const keys = { 'rbla.interface': itf.label || '', 'rbla.blocks': pairText(itf.blocks) };
+    if (itf.id !== undefined) keys['rbla.id'] = itf.id;
+    if (itf.friction !== undefined) keys['rbla.friction'] = num(itf.friction);
+    const crv = new rhino.PolylineCurve([...itf.polygon, itf.polygon[0]]);
+    doc.objects().add(crv, userAttr(rhino, layer, null, keys));
+  }
+}
+
+function addLoadPoints(rhino, doc, model, layer) {
+  const byId = new Map(model.blocks.map((b) => [b.id, b]));
+  for (const kind of ['dead', 'live']) {
+    for (const load of model.loads?.[kind] || []) {
+      const b = byId.get(load.block);
+      const point = load.point || (b ? polyhedronMassProps(b.vertices, b.faces).centroid : [0, 0, 0]);
+      const keys = { 'rbla.load': kind, 'rbla.block': load.block, 'rbla.force': vec(load.force || [0, 0, 0]) };
+      if (load.moment) keys['rbla.moment'] = vec(load.moment);
+      doc.objects().add(new rhino.Point(point), userAttr(rhino, layer, null, keys));
+    }
+  }
+}
+
 /**
- * Build a File3dm from a model JSON. Blocks become closed Breps (planar faces; default) or closed
- * meshes (`as: 'mesh'`), named by block id, with User Text rbla.role / rbla.unit_weight / rbla.label.
- * Model-wide settings go to the document User Text (rbla.* keys).
+ * Build a File3dm from a model JSON by the CAD attribute convention: blocks become closed Breps
+ * (planar faces; default) or closed meshes (`as: 'mesh'`) named by block id with User Text
+ * rbla.role / rbla.unit_weight / rbla.label; given interfaces become closed polylines with
+ * rbla.interface; loads become points with rbla.load; model-wide settings go to the Document
+ * User Text (documentUserText). Reading the file back gives the same model.
  */
 export async function modelTo3dm(model, { as = 'brep' } = {}) {
   const rhino = await loadRhino();
@@ -62,33 +146,15 @@ export async function modelTo3dm(model, { as = 'brep' } = {}) {
   const len = model.units?.length || 'm';
   doc.settings().modelUnitSystem = rhino.UnitSystem[RBLA_TO_RHINO[len]];
   doc.settings().modelAbsoluteTolerance = { m: 1e-4, cm: 1e-2, mm: 0.1 }[len];
-  const strings = doc.strings();
-  strings.set('rbla.schema_version', model.schema_version || '1.0.0');
-  if (model.title) strings.set('rbla.title', model.title);
-  if (model.units?.force) strings.set('rbla.units.force', model.units.force);
-  if (model.units?.unit_weight) strings.set('rbla.units.unit_weight', model.units.unit_weight);
-  if (model.gravity) strings.set('rbla.gravity', model.gravity);
-  if (model.defaults?.unit_weight !== undefined) strings.set('rbla.unit_weight', String(model.defaults.unit_weight));
-  if (model.defaults?.friction !== undefined) strings.set('rbla.friction', String(model.defaults.friction));
-  for (const key of ['analysis', 'loads', 'detection', 'interfaces']) {
-    if (model[key] !== undefined) strings.set(`rbla.${key}`, JSON.stringify(model[key]));
-  }
-  const roleLayer = {};
-  const roleColors = { free: '#c8b496', fixed: '#505050', moving_support: '#2ca02c' };
-  for (const role of ['free', 'fixed', 'moving_support']) {
-    const layer = new rhino.Layer();
-    layer.name = `rbla ${role}`;
-    layer.color = colorObj(roleColors[role]);
-    roleLayer[role] = doc.layers().add(layer);
-  }
+  for (const [k, v] of Object.entries(documentUserText(model))) doc.strings().set(k, v);
+  const layer = addLayers(rhino, doc, [['free', 'rbla free', '#c8b496'], ['fixed', 'rbla fixed', '#505050'],
+    ['moving_support', 'rbla moving_support', '#2ca02c'], ['interface', 'rbla interfaces', '#1f77b4'], ['load', 'rbla loads', '#d62728']]);
   for (const b of model.blocks) {
     const role = b.role || 'free';
-    const attr = new rhino.ObjectAttributes();
-    attr.name = b.id;
-    attr.layerIndex = roleLayer[role];
-    attr.setUserString('rbla.role', role);
-    if (b.unit_weight !== undefined) attr.setUserString('rbla.unit_weight', String(b.unit_weight));
-    if (b.label !== undefined) attr.setUserString('rbla.label', b.label);
+    const keys = { 'rbla.role': role };
+    if (b.unit_weight !== undefined) keys['rbla.unit_weight'] = num(b.unit_weight);
+    if (b.label !== undefined) keys['rbla.label'] = b.label;
+    const attr = userAttr(rhino, layer[role], b.id, keys);
     const mesh = meshFromPolyhedron(rhino, b.vertices, b.faces);
     if (as === 'mesh') {
       doc.objects().add(mesh, attr);
@@ -98,215 +164,34 @@ export async function modelTo3dm(model, { as = 'brep' } = {}) {
       doc.objects().add(brep, attr);
     }
   }
+  addInterfaceObjects(rhino, doc, model, layer.interface);
+  addLoadPoints(rhino, doc, model, layer.load);
   return doc;
 }
 
-// --- .3dm -> model ------------------------------------------------------------------------------
-function weldKey(p, tol) {
-  return p.map((x) => Math.round(x / tol)).join(',');
-}
-
-/** Extract {vertices, faces} from a closed planar-faced Brep, or throw an ExchangeError naming it. */
-function polyhedronFromBrep(rhino, brep, name, tol) {
-  const bverts = brep.vertices();
-  const vertices = [];
-  for (let i = 0; i < bverts.count; i++) vertices.push(bverts.get(i).location);
-  if (!brep.isSolid) throw new ExchangeError(`object "${name}": the Brep is not closed (not a solid); close it (Cap/Join) or export it as a closed mesh`);
-  const edges = brep.edges();
-  const faces = [];
-  const fl = brep.faces();
-  for (let fi = 0; fi < fl.count; fi++) {
-    const face = fl.get(fi);
-    const loops = face.loops;
-    if (loops.count !== 1) throw new ExchangeError(`object "${name}": face ${fi} has holes (inner trimming loops), which rbla faces cannot represent; split the face`);
-    const loop = face.outerLoop();
-    const idx = [];
-    for (let t = 0; t < loop.trimCount; t++) {
-      const trim = loop.trims.get(t);
-      if (trim.edgeIndex < 0) throw new ExchangeError(`object "${name}" is a curved Brep (singular trim on face ${fi}); rhino3dm cannot mesh curved Breps: mesh it in Rhino (_Mesh) or model it with planar faces`);
-      const edge = edges.get(trim.edgeIndex);
-      if (!edge.isLinear()) throw new ExchangeError(`object "${name}" is a curved Brep (face ${fi} has a curved edge); rhino3dm cannot mesh curved Breps: mesh it in Rhino (_Mesh) or model it with planar faces`);
-      idx.push(trim.startVertexIndex);
-    }
-    // drop repeated consecutive vertices
-    const clean = idx.filter((v, k) => v !== idx[(k + idx.length - 1) % idx.length]);
-    if (clean.length < 3) throw new ExchangeError(`object "${name}" is a curved Brep (face ${fi} is bounded by fewer than 3 straight edges); rhino3dm cannot mesh curved Breps`);
-    const pts = clean.map((i) => vertices[i]);
-    // planarity: loop vertices and a grid of surface samples must lie on the polygon plane
-    const nrm = newellNormal(pts);
-    const nl = norm(nrm);
-    if (nl < 1e-300) throw new ExchangeError(`object "${name}": face ${fi} is degenerate`);
-    const n = nrm.map((x) => x / nl);
-    const c = pts.reduce((a, p) => [a[0] + p[0] / pts.length, a[1] + p[1] / pts.length, a[2] + p[2] / pts.length], [0, 0, 0]);
-    const off = (p) => Math.abs(dot(sub(p, c), n));
-    let maxOff = Math.max(...pts.map(off));
-    const srf = face.underlyingSurface();
-    try {
-      const du = srf.domain(0), dv = srf.domain(1);
-      const u0 = du[0] ?? du.t0 ?? du.min, u1 = du[1] ?? du.t1 ?? du.max;
-      const v0 = dv[0] ?? dv.t0 ?? dv.min, v1 = dv[1] ?? dv.t1 ?? dv.max;
-      if ([u0, u1, v0, v1].every(Number.isFinite)) {
-        for (const a of [0.25, 0.5, 0.75]) for (const b of [0.25, 0.5, 0.75]) {
-          const p = srf.pointAt(u0 + a * (u1 - u0), v0 + b * (v1 - v0));
-          if (p && p.length === 3) maxOff = Math.max(maxOff, off(p));
-        }
-      }
-    } catch { /* surface sampling unavailable: vertex planarity only */ }
-    if (maxOff > tol) throw new ExchangeError(`object "${name}" is a curved Brep (face ${fi} is not planar, deviation ${fmt(maxOff)} > tolerance ${fmt(tol)}); rhino3dm cannot mesh curved Breps: mesh it in Rhino (_Mesh) or model it with planar faces`);
-    // outer loops run counter-clockwise about the surface normal; a reversed face flips it
-    let poly = clean;
-    try {
-      const sn = srf.normalAt(0.5 * (srf.domain(0)[0] + srf.domain(0)[1]), 0.5 * (srf.domain(1)[0] + srf.domain(1)[1]));
-      const faceN = face.orientationIsReversed ? sn.map((x) => -x) : sn;
-      if (dot(faceN, n) < 0) poly = [...clean].reverse();
-    } catch {
-      if (face.orientationIsReversed) poly = [...clean].reverse();
-    }
-    faces.push(poly);
-  }
-  return compactPolyhedron(vertices, faces);
-}
-
-function compactPolyhedron(vertices, faces) {
-  const used = new Map();
-  const outV = [];
-  const outF = faces.map((f) => f.map((i) => {
-    if (!used.has(i)) { used.set(i, outV.length); outV.push(vertices[i]); }
-    return used.get(i);
-  }));
-  // keep original vertex order where possible: renumber in order of first appearance in the vertex list
-  const order = [...used.keys()].sort((a, b) => a - b);
-  const remap = new Map(order.map((old, k) => [old, k]));
-  return { vertices: order.map((i) => vertices[i]), faces: faces.map((f) => f.map((i) => remap.get(i))) };
-}
-
-function polyhedronFromMesh(mesh, name, tol) {
-  if (!mesh.isClosed) throw new ExchangeError(`object "${name}": the mesh is not closed`);
-  const vl = mesh.vertices();
-  const raw = [];
-  for (let i = 0; i < vl.count; i++) raw.push(vl.point3dAt ? vl.point3dAt(i) : vl.get(i));
-  // weld coincident vertices (meshes often duplicate them along creases)
-  const keyToIdx = new Map();
-  const map = [];
-  const vertices = [];
-  for (const p of raw) {
-    const k = weldKey(p, tol);
-    if (!keyToIdx.has(k)) { keyToIdx.set(k, vertices.length); vertices.push(p); }
-    map.push(keyToIdx.get(k));
-  }
-  const faces = [];
-  const fl = mesh.faces();
-  for (let i = 0; i < fl.count; i++) {
-    const f = fl.get(i).map((j) => map[j]);
-    const poly = f[2] === f[3] ? [f[0], f[1], f[2]] : f;
-    const clean = poly.filter((v, k) => v !== poly[(k + poly.length - 1) % poly.length]);
-    if (clean.length >= 3) faces.push(clean);
-  }
-  if (faces.length < 4) throw new ExchangeError(`object "${name}": the mesh has fewer than 4 faces`);
-  return compactPolyhedron(vertices, faces);
-}
-
-function orientOutward(poly) {
-  const { volume } = polyhedronMassProps(poly.vertices, poly.faces);
-  if (volume < 0) poly.faces = poly.faces.map((f) => [...f].reverse());
-  return poly;
-}
-
-function parseNumber(str, what, name) {
-  const x = Number(str);
-  if (!Number.isFinite(x)) throw new ExchangeError(`object "${name}": ${what} "${str}" is not a number`);
-  return x;
-}
-
 /**
- * Convert a File3dm to a model JSON. Options: unitWeight, friction (override defaults),
- * title. Returns { model, warnings }. Throws ExchangeError (naming the object) on unsupported geometry.
+ * Read a File3dm into a model JSON by the CAD attribute convention (cad-reader.mjs). Options
+ * override Document User Text: unitWeight (rbla.default_unit_weight), friction
+ * (rbla.default_friction), title (rbla.title); name: the file name (the default title).
+ * Returns { model (null when there are errors), messages, errors, warnings } (messages:
+ * {code, severity, text, object, key}).
  */
 export async function file3dmToModel(doc, opts = {}) {
   const rhino = await loadRhino();
-  const warnings = [];
-  const strings = doc.strings();
-  const dget = (k) => { try { const v = strings.getvalue(k); return v === '' || v == null ? undefined : v; } catch { return undefined; } };
-  const unit = unitName(rhino, doc.settings().modelUnitSystem);
-  let length = RBLA_UNITS[unit];
-  let factor = 1;
-  if (!length) {
-    if (unit === 'None') { length = 'm'; warnings.push('document has no unit system: assuming metres'); }
-    else if (UNIT_TO_METRES[unit]) { length = 'm'; factor = UNIT_TO_METRES[unit]; warnings.push(`document units ${unit} converted to metres`); }
-    else throw new ExchangeError(`document unit system ${unit} is not supported (use mm, cm or m)`);
-  }
-  const absTol = (doc.settings().modelAbsoluteTolerance || 1e-3);
-  const model = { schema_version: dget('rbla.schema_version') || '1.0.0' };
-  const title = opts.title ?? dget('rbla.title');
-  if (title) model.title = title;
-  model.units = { length };
-  const fu = dget('rbla.units.force'); if (fu) model.units.force = fu;
-  const wu = dget('rbla.units.unit_weight'); if (wu) model.units.unit_weight = wu;
-  const grav = dget('rbla.gravity'); if (grav) model.gravity = grav;
-  const defaults = {};
-  const duw = opts.unitWeight ?? (dget('rbla.unit_weight') !== undefined ? Number(dget('rbla.unit_weight')) : undefined);
-  const dfr = opts.friction ?? (dget('rbla.friction') !== undefined ? Number(dget('rbla.friction')) : undefined);
-  if (duw !== undefined) defaults.unit_weight = duw;
-  if (dfr !== undefined) defaults.friction = dfr;
-  model.defaults = defaults;
-  model.blocks = [];
-
-  const layerPath = (idx) => { try { return doc.layers().findIndex(idx)?.fullPath; } catch { return undefined; } };
-  const ids = new Set();
-  const frictions = new Set();
-  const objs = doc.objects();
-  for (let i = 0; i < objs.count; i++) {
-    const o = objs.get(i);
-    const g = o.geometry();
-    const a = o.attributes();
-    const ot = g.objectType;
-    const type = g.constructor?.name;
-    const name = a.name || `B${i}`;
-    let poly;
-    const tol = Math.max(absTol, 1e-9) ;
-    if (g instanceof rhino.Brep) poly = polyhedronFromBrep(rhino, g, name, tol);
-    else if (g instanceof rhino.Extrusion) poly = polyhedronFromBrep(rhino, g.toBrep(true), name, tol);
-    else if (g instanceof rhino.Mesh) poly = polyhedronFromMesh(g, name, Math.min(tol, 1e-9) || 1e-9);
-    else { warnings.push(`object "${name}" (${type || ot}) skipped: not a Brep, extrusion or mesh`); continue; }
-    orientOutward(poly);
-    if (factor !== 1) poly.vertices = poly.vertices.map((p) => p.map((x) => x * factor));
-    let id = a.name || `B${i}`;
-    if (ids.has(id)) {
-      let k = 2; while (ids.has(`${id}_${k}`)) k++;
-      warnings.push(`duplicate object name "${id}": block renamed "${id}_${k}"`);
-      id = `${id}_${k}`;
+  const record = documentRecord(rhino, doc, opts.name ?? null);
+  const override = (key, value) => {
+    if (value === undefined) return;
+    for (const k of Object.keys(record.user_text)) {
+      const low = k.trim().toLowerCase();
+      if (low === key || ALIASES.document.get(low) === key) delete record.user_text[k];
     }
-    ids.add(id);
-    const block = { id };
-    const label = a.getUserString('rbla.label') || layerPath(a.layerIndex);
-    if (label) block.label = label;
-    const role = a.getUserString('rbla.role') || 'free';
-    if (!['free', 'fixed', 'moving_support'].includes(role)) throw new ExchangeError(`object "${name}": rbla.role "${role}" must be free, fixed or moving_support`);
-    block.role = role;
-    block.vertices = poly.vertices;
-    block.faces = poly.faces;
-    const mp = polyhedronMassProps(poly.vertices, poly.faces);
-    if (!(mp.volume > 0)) throw new ExchangeError(`object "${name}": zero volume`);
-    block.centroid = mp.centroid;
-    block.volume = mp.volume;
-    const uw = a.getUserString('rbla.unit_weight');
-    if (uw) block.unit_weight = parseNumber(uw, 'rbla.unit_weight', name);
-    const fr = a.getUserString('rbla.friction');
-    if (fr) frictions.add(parseNumber(fr, 'rbla.friction', name));
-    model.blocks.push(block);
-  }
-  if (frictions.size > 0 && opts.friction === undefined) {
-    const mu = Math.min(...frictions);
-    if (frictions.size > 1) warnings.push(`objects carry different rbla.friction values (${[...frictions].join(', ')}); model schema 1.x has no per-block friction: using the smallest, ${mu}, for all interfaces`);
-    model.defaults.friction = mu;
-  }
-  if (Object.keys(model.defaults).length === 0) delete model.defaults;
-  for (const key of ['loads', 'detection', 'interfaces', 'analysis']) {
-    const v = dget(`rbla.${key}`);
-    if (v) { try { model[key] = JSON.parse(v); } catch { warnings.push(`document User Text rbla.${key} is not valid JSON: ignored`); } }
-  }
-  if (model.blocks.length === 0) throw new ExchangeError('the .3dm file contains no closed Brep, extrusion or mesh');
-  return { model, warnings };
+    record.user_text[key] = String(value);
+  };
+  override('rbla.default_unit_weight', opts.unitWeight);
+  override('rbla.default_friction', opts.friction);
+  override('rbla.title', opts.title);
+  const { model, report } = readDocument(record, 'exchange');
+  return { model, messages: report.messages, errors: report.errors, warnings: report.warnings };
 }
 
 // --- result -> .3dm -----------------------------------------------------------------------------
@@ -373,6 +258,7 @@ export async function resultTo3dm(model, result, { amplitude, runName, date } = 
       const moved = b.vertices.map(motion);
       const m2 = meshFromPolyhedron(rhino, moved, b.faces);
       const a2 = coloredAttr(rhino, Ldisp.index, r?.falling ? '#d62728' : roleHex[role], b.id);
+      a2.setUserString('rbla.block', b.id);
       a2.setUserString('rbla.amplitude', String(s));
       doc.objects().add(m2, a2);
     }
@@ -384,7 +270,8 @@ export async function resultTo3dm(model, result, { amplitude, runName, date } = 
     const poly = interfacePolygon(iface);
     const attr = coloredAttr(rhino, Lstate[st].index, STATE_COLORS[st], iface.id);
     attr.setUserString('rbla.state', st);
-    attr.setUserString('rbla.blocks', iface.blocks.join(' | '));
+    attr.setUserString('rbla.blocks', pairText(iface.blocks));
+    if (iface.label) attr.setUserString('rbla.interface', iface.label);
     if (iface.resultant) attr.setUserString('rbla.normal_force', String(iface.resultant.normal_force));
     if (poly.length >= 3) {
       const mesh = new rhino.Mesh();

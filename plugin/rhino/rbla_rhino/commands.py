@@ -27,25 +27,21 @@ def _say(text):
 
 
 def _export(doc):
-    """Collect and write the model; returns (model dict, path, collected) or None."""
+    """Collect and write the model; returns (model dict, path, collected) or None. Prints the
+    reader's warnings, and every error when there is one (then nothing is written)."""
     col = rdoc.collect_model(doc)
-    if col.skipped_open:
-        _say("skipped %d open surface(s)/mesh(es) without rbla keys (not blocks): %s"
-             % (len(col.skipped_open), ", ".join(col.skipped_open[:10])))
-    if col.issues:
-        _say("the model cannot be exported (%d problem%s):"
-             % (len(col.issues), "" if len(col.issues) == 1 else "s"))
-        for text in col.issues:
-            for line in text.splitlines():
-                Rhino.RhinoApp.WriteLine("  " + line)
+    for m in col.messages:
+        if m.severity == "warning":
+            _say("warning [%s]: %s" % (m.code, m.text))
+    errors = [m for m in col.messages if m.severity == "error"]
+    if errors:
+        _say("the model cannot be exported (%d error%s):"
+             % (len(errors), "" if len(errors) == 1 else "s"))
+        for m in errors:
+            for k, line in enumerate(m.text.splitlines()):
+                Rhino.RhinoApp.WriteLine(("  error [%s]: " % m.code if k == 0 else "    ") + line)
         return None
-    try:
-        model = col.builder.to_dict()
-    except ModelError as e:
-        _say(str(e))
-        return None
-    for w in col.builder.warnings:
-        _say("warning: " + w)
+    model = col.model
     folder = rdoc.run_folder(doc)
     path = os.path.join(folder, "model.json")
     col.builder.write(path)
@@ -189,4 +185,4 @@ def model_json_text(doc=None):
     col = rdoc.collect_model(doc or rdoc.active_doc())
     if col.issues:
         raise ModelError("\n".join(col.issues))
-    return json.dumps(col.builder.to_dict(), indent=1)
+    return json.dumps(col.model, indent=1)

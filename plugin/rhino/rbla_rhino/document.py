@@ -1,12 +1,12 @@
 """RhinoDoc side: read the model from the document, put results on layers (RhinoCommon only).
 
-Reading (``collect_model``): every selected object (or, with nothing selected, every visible
-object outside the result layers) is classified by its User Text (keys in
-``rbla_cad.usertext``): a load point (``rbla.load``), an interface surface
-(``rbla.interface``), or a block (any closed Brep / Extrusion / closed Mesh / SubD, and any
-Brep or mesh carrying rbla.* keys). Open surfaces and meshes without rbla.* keys are skipped as
-construction geometry (and listed). Each bad block is reported by name; the export stops when
-any is bad.
+Reading (``collect_model``): every selected object (or, with nothing selected, every object
+outside the result layers) becomes a plain record (its geometry as a polyhedron, planar pieces
+or a point; its name, layer and User Text) and the host-independent reader
+``rbla_cad.cad_reader`` builds the model from the records by the CAD attribute convention
+(``rbla_cad/data/cad_attributes.json``, docs/cad-attributes.md), exactly as the .3dm exchange
+does. Every unreadable attribute is an error naming the object and the key; anything taken
+differently from what was written is a warning saying what was used instead.
 
 Results (``draw_result``) go on sub-layers of ``rbla results``: ``Displaced blocks``,
 ``Contacts`` (polygons coloured by state) and ``Labels`` (text dots with alpha or the base
@@ -21,8 +21,8 @@ import Rhino
 import Rhino.Geometry as rg
 import scriptcontext as sc
 
-from rbla_cad import usertext
-from rbla_cad.model import ModelBuilder, ModelError
+from rbla_cad import cad_reader, usertext
+from rbla_cad.model import ModelError
 from rbla_cad import result as rres
 
 from . import geometry as rgeo
@@ -67,12 +67,12 @@ def _is_result_object(doc, obj):
 
 
 def candidate_objects(doc):
-    """The selected objects, or every visible, unlocked-or-locked normal object when nothing
-    is selected; result layers excluded."""
+    """The selected objects, or every normal object (hidden ones too: the reader leaves them
+    out with a warning) when nothing is selected; result layers excluded."""
     selected = list(doc.Objects.GetSelectedObjects(False, False))
     if not selected:
         settings = Rhino.DocObjects.ObjectEnumeratorSettings()
-        settings.HiddenObjects = False
+        settings.HiddenObjects = True
         settings.DeletedObjects = False
         settings.IncludeLights = False
         settings.IncludeGrips = False
@@ -83,130 +83,56 @@ def candidate_objects(doc):
 # -------------------------------------------------------------------------------- export
 
 class Collected(object):
-    """What collect_model found: builder, {block id: object id}, issues, settings."""
+    """What collect_model found: the model (None when there are errors), the builder,
+    {block id: object id}, the reader's errors and warnings (texts and Message objects), the
+    document settings (``exe``: rbla.exe)."""
 
-    def __init__(self):
-        self.builder = None
-        self.block_objects = {}
-        self.issues = []       # strings
-        self.settings = None
-        self.skipped = 0
-        self.skipped_open = []  # names of open Breps/meshes without rbla keys (not blocks)
+    def __init__(self, reading, object_ids):
+        self.reading = reading
+        self.model = reading.model
+        self.builder = reading.builder
+        self.block_objects = dict((bid, object_ids[g]) for bid, g in
+                                  reading.block_objects.items() if g in object_ids)
+        self.messages = reading.report.messages
+        self.issues = [m.text for m in reading.report.errors]
+        self.warnings = [m.text for m in reading.report.warnings]
+        self.settings = {"exe": reading.settings.get("rbla.exe")}
+
+
+def _is_hidden(doc, obj):
+    try:
+        layer = doc.Layers[obj.Attributes.LayerIndex]
+        return bool(obj.IsHidden) or not layer.IsVisible
+    except Exception:
+        return bool(getattr(obj, "IsHidden", False))
+
+
+def object_record(doc, obj, tolerance):
+    """The plain record of one Rhino object (see rbla_cad.cad_reader)."""
+    g = obj.Geometry
+    rec = {"guid": str(obj.Id), "name": obj.Attributes.Name or None,
+           "layer": _layer_path(doc, obj), "hidden": _is_hidden(doc, obj),
+           "type": type(g).__name__, "user_text": object_user_text(obj)}
+    rec.update(rgeo.shape_record(g, tolerance))
+    return rec
+
+
+def document_record(doc, objects=None, title=None):
+    """The plain record of the document (its objects: ``objects``, else candidate_objects)."""
+    tol = doc.ModelAbsoluteTolerance
+    objs = candidate_objects(doc) if objects is None else list(objects)
+    name = title or (os.path.splitext(doc.Name)[0] if doc.Name else None)
+    return objs, {"name": name, "units": document_units(doc), "tolerance": tol,
+                  "user_text": document_user_text(doc),
+                  "objects": [object_record(doc, o, tol) for o in objs]}
 
 
 def collect_model(doc, objects=None, title=None):
-    """Build the model from the document; returns a Collected (check ``issues``)."""
-    out = Collected()
-    tol = doc.ModelAbsoluteTolerance
-    try:
-        out.settings = usertext.document_settings(document_user_text(doc))
-        mb = ModelBuilder(length=document_units(doc), force=out.settings["force_unit"],
-                          unit_weight_unit=out.settings["unit_weight_unit"],
-                          gravity=out.settings["gravity"],
-                          title=title or (doc.Name or "Rhino model"),
-                          default_unit_weight=out.settings["default_unit_weight"],
-                          default_friction=out.settings["default_friction"])
-    except ModelError as e:
-        out.issues.append(str(e))
-        return out
-    out.builder = mb
-    objs = candidate_objects(doc) if objects is None else list(objects)
-    names = {}
-    for o in objs:
-        n = o.Attributes.Name
-        if n:
-            names[n] = names.get(n, 0) + 1
-    used = set()
-    geoms = {}
-    interfaces = []
-    loads = []
-    for o in objs:
-        ut = object_user_text(o)
-        name = o.Attributes.Name or None
-        who = "object %s" % (repr(name) if name else str(o.Id))
-        g = o.Geometry
-        try:
-            if usertext.is_load(ut):
-                if isinstance(g, rg.Point):
-                    loads.append((o, usertext.load_attributes(ut, who), g.Location))
-                else:
-                    out.issues.append("%s: rbla.load is for point objects" % who)
-                continue
-            if usertext.is_interface(ut):
-                interfaces.append((o, usertext.interface_attributes(ut, name, who)))
-                continue
-            if not (isinstance(g, (rg.Brep, rg.Extrusion, rg.Mesh)) or
-                    (hasattr(rg, "SubD") and isinstance(g, rg.SubD))):
-                out.skipped += 1
-                continue
-            if not usertext.normalise(ut) and not rgeo.is_solid(g):
-                # an open surface or mesh without rbla keys: construction geometry, not a block
-                out.skipped += 1
-                out.skipped_open.append(name or str(o.Id))
-                continue
-            attrs = usertext.block_attributes(ut, name, _layer_path(doc, o), who)
-            if attrs["ignore"]:
-                out.skipped += 1
-                continue
-            bid = attrs["id"] or (name if name and names.get(name) == 1 else str(o.Id))
-            if bid in used:
-                raise ModelError("%s: block id %r is used twice" % (who, bid), bid)
-            verts, faces, vol, cen = rgeo.block_polyhedron(g, tol, bid)
-            mb.add_block(bid, verts, faces, role=attrs["role"], unit_weight=attrs["unit_weight"],
-                         label=attrs["label"], centroid=cen, volume=vol,
-                         friction=attrs["friction"])
-            used.add(bid)
-            out.block_objects[bid] = o.Id
-            geoms[bid] = g
-        except ModelError as e:
-            out.issues.append(str(e))
-    for o, a in interfaces:
-        name = o.Attributes.Name or str(o.Id)
-        poly = rgeo.planar_polygon(o.Geometry, tol)
-        if poly is None:
-            out.issues.append("interface %r: not a planar surface or closed planar polyline"
-                              % name)
-            continue
-        ids = a["blocks"]
-        if ids is None:
-            c = rg.Point3d(sum(p[0] for p in poly) / len(poly), sum(p[1] for p in poly) / len(poly),
-                           sum(p[2] for p in poly) / len(poly))
-            near = sorted((rgeo.distance_to(g, c), bid) for bid, g in geoms.items())
-            near = [bid for d, bid in near if d <= 10 * tol][:2]
-            if len(near) != 2:
-                out.issues.append("interface %r: cannot tell which two blocks it joins (set "
-                                  "rbla.blocks = 'idA, idB')" % name)
-                continue
-            ids = near
-        try:
-            mb.add_interface(ids, poly, label=a["label"], friction=a["friction"])
-        except ModelError as e:
-            out.issues.append(str(e))
-    for o, a, pt in loads:
-        bid = a["block"]
-        if bid is None:
-            inside = [b for b, g in geoms.items() if rgeo.contains(g, pt, tol)]
-            if len(inside) != 1:
-                out.issues.append("load point %s: inside %d blocks; set rbla.block"
-                                  % (o.Attributes.Name or o.Id, len(inside)))
-                continue
-            bid = inside[0]
-        p = [pt.X, pt.Y, pt.Z]
-        if a["kind"] == "live":
-            mb.add_live_load(bid, a["force"], p, a["moment"])
-        else:
-            mb.add_dead_load(bid, a["force"], p, a["moment"])
-    if not out.issues:
-        try:
-            usertext.apply_settings(mb, out.settings)
-            if loads and any(a["kind"] == "live" for _, a, _ in loads) and \
-                    out.settings["analysis"] == "seismic":
-                out.issues.append("live loads given but rbla.analysis is 'seismic': set it to "
-                                  "'live' in the Document User Text")
-            mb.check()
-        except ModelError as e:
-            out.issues.append(str(e))
-    return out
+    """Read the model from the document by the CAD attribute convention; returns a
+    Collected (``issues`` lists the errors; ``model`` is None when there is one)."""
+    objs, record = document_record(doc, objects, title)
+    reading = cad_reader.read_document(record, host="rhino")
+    return Collected(reading, dict((str(o.Id), o.Id) for o in objs))
 
 
 def run_folder(doc):
@@ -305,7 +231,8 @@ def draw_result(doc, model, result, amplitude=None, screw=False, show_closed=Fal
             doc.Objects.AddMesh(mesh, a)
         for c in rres.contact_polygons(result, show_closed, scale):
             a = _attributes(layers["Contacts"], c["rgb"], "rbla:%s %s" % (c["id"], c["state"]))
-            a.SetUserString("rbla.interface_state", c["state"])
+            a.SetUserString("rbla.state", c["state"])
+            a.SetUserString("rbla.blocks", ", ".join(c["blocks"]))
             if c["label"]:
                 a.SetUserString("rbla.interface", c["label"])
             pts = c["polygon"]

@@ -12,6 +12,7 @@ import Rhino.Geometry as rg
 import System
 
 from rbla_cad import geometry as geo
+from rbla_cad import polygons
 from rbla_cad.model import ModelError, check_block_geometry
 
 
@@ -149,21 +150,20 @@ def polyhedron_from_mesh(mesh):
 
 
 def block_polyhedron(geometry, tolerance, block_id="?"):
-    """(vertices, faces, volume, centroid) of a closed block; raises ModelError naming it.
+    """(vertices, faces, volume, centroid) of a closed block; raises ModelError (its message
+    says what is wrong, the caller names the object).
 
     volume/centroid are RhinoCommon's VolumeMassProperties of what is written (the Brep when
     it is written exactly, else its mesh; None if it failed)."""
     brep = None if isinstance(geometry, rg.Mesh) else to_brep(geometry)
     if brep is not None:
         if not brep.IsSolid:
-            raise ModelError("block %r is not a closed solid (open Brep: cap it or join it)"
-                             % (block_id,), block_id)
+            raise ModelError("not a closed solid (open Brep: cap it or join it)", block_id)
         if brep.SolidOrientation == rg.BrepSolidOrientation.Inward:
             brep = brep.DuplicateBrep()
             brep.Flip()
     elif isinstance(geometry, rg.Mesh) and not geometry.IsClosed:
-        raise ModelError("block %r is an open mesh (fill its holes first)" % (block_id,),
-                         block_id)
+        raise ModelError("an open mesh (fill its holes first)", block_id)
     vf = None
     if brep is not None:
         vf = polyhedron_from_planar_brep(brep, tolerance)
@@ -176,8 +176,7 @@ def block_polyhedron(geometry, tolerance, block_id="?"):
     if vf is None:
         mesh = mesh_of(brep if brep is not None else geometry)
         if mesh is None or not mesh.IsClosed:
-            raise ModelError("block %r could not be meshed into a closed polyhedron"
-                             % (block_id,), block_id)
+            raise ModelError("could not be meshed into a closed polyhedron", block_id)
         vf = polyhedron_from_mesh(mesh)
         source = mesh  # the faceted block's own values: no spurious disagreement warning
     vmp = rg.VolumeMassProperties.Compute(source)
@@ -188,38 +187,77 @@ def block_polyhedron(geometry, tolerance, block_id="?"):
     return vf[0], vf[1], volume, centroid
 
 
-def planar_polygon(geometry, tolerance):
-    """Corner points of a planar interface object: a single-face planar Brep/Surface (its
-    outer loop) or a closed planar polyline curve; None otherwise."""
+def _face_polygons(brep, tolerance):
+    """Outer loops of a Brep's faces (each planar and polygonal), or a reason why not."""
+    polys = []
+    for i, face in enumerate(brep.Faces):
+        if not face.IsPlanar(tolerance):
+            return None, "face %d is not planar" % i
+        pts = _loop_polygon(face.OuterLoop, tolerance)
+        if pts is None:
+            return None, "face %d is not bounded by straight edges" % i
+        polys.append(pts)
+    return polys, None
+
+
+def _mesh_polygons(mesh, tolerance):
+    """An open mesh's faces (a warped quad as its two triangles)."""
+    verts = [_pt(mesh.Vertices[i]) for i in range(mesh.Vertices.Count)]
+    polys = []
+    for i in range(mesh.Faces.Count):
+        f = mesh.Faces[i]
+        if not f.IsQuad:
+            polys.append([verts[f.A], verts[f.B], verts[f.C]])
+            continue
+        quad = [verts[f.A], verts[f.B], verts[f.C], verts[f.D]]
+        n, area = polygons.unit_normal(quad)
+        if area > 0 and all(abs(geo.dot(geo.sub(p, quad[0]), n)) <= tolerance for p in quad):
+            polys.append(quad)
+        else:
+            polys += [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]]
+    return polys
+
+
+def _curve_polygon(curve, tolerance):
+    if not curve.IsClosed or not curve.IsPlanar(tolerance):
+        return None, "a curve must be a closed planar polyline"
+    ok, pl = curve.TryGetPolyline()
+    if not ok:
+        return None, "a curve must be a closed planar polyline"
+    pts = [_pt(pl[i]) for i in range(pl.Count)]
+    if len(pts) > 1 and geo.norm(geo.sub(pts[0], pts[-1])) <= tolerance:
+        pts.pop()
+    if len(pts) < 3:
+        return None, "the polyline has fewer than 3 corners"
+    return [pts], None
+
+
+def shape_record(geometry, tolerance):
+    """The shape part of an object's record for rbla_cad.cad_reader: a closed block as a
+    polyhedron (shape 'solid'), open planar geometry as its pieces ('polygons'), a point, or
+    'other'; what cannot be converted is given as 'error'."""
+    if isinstance(geometry, rg.Point):
+        return {"shape": "point", "point": _pt(geometry.Location)}
     if isinstance(geometry, rg.Curve):
-        if not geometry.IsClosed or not geometry.IsPlanar(tolerance):
-            return None
-        ok, pl = geometry.TryGetPolyline()
-        if not ok:
-            return None
-        pts = [_pt(pl[i]) for i in range(pl.Count)]
-        if len(pts) > 1 and geo.norm(geo.sub(pts[0], pts[-1])) <= tolerance:
-            pts.pop()
-        return pts if len(pts) >= 3 else None
+        polys, why = _curve_polygon(geometry, tolerance)
+        return {"shape": "polygons", "polygons": polys} if why is None else \
+            {"shape": "polygons", "error": why}
+    is_geom = isinstance(geometry, (rg.Brep, rg.Extrusion, rg.Surface, rg.Mesh)) or \
+        (hasattr(rg, "SubD") and isinstance(geometry, rg.SubD))
+    if not is_geom:
+        return {"shape": "other"}
+    if is_solid(geometry):
+        try:
+            v, f, vol, cen = block_polyhedron(geometry, tolerance)
+        except ModelError as e:
+            return {"shape": "solid", "error": str(e)}
+        return {"shape": "solid", "vertices": v, "faces": f, "volume": vol, "centroid": cen}
+    if isinstance(geometry, rg.Mesh):
+        return {"shape": "polygons", "polygons": _mesh_polygons(geometry, tolerance)}
     brep = to_brep(geometry)
-    if brep is None or brep.Faces.Count != 1 or not brep.Faces[0].IsPlanar(tolerance):
-        return None
-    return _loop_polygon(brep.Faces[0].OuterLoop, tolerance)
-
-
-def distance_to(geometry, point):
-    """Distance from a Rhino Point3d to a block's geometry (Brep or Mesh)."""
-    if isinstance(geometry, rg.Mesh):
-        cp = geometry.ClosestPoint(point)
-    else:
-        cp = to_brep(geometry).ClosestPoint(point)
-    return cp.DistanceTo(point)
-
-
-def contains(geometry, point, tolerance):
-    if isinstance(geometry, rg.Mesh):
-        return geometry.IsPointInside(point, tolerance, False)
-    return to_brep(geometry).IsPointInside(point, tolerance, False)
+    polys, why = _face_polygons(brep, tolerance) if brep is not None else (None, "no surface")
+    return {"shape": "polygons", "polygons": polys} if why is None else \
+        {"shape": "polygons", "error": why}
 
 
 # ------------------------------------------------------------------------------- output

@@ -11,6 +11,7 @@ import json
 import Rhino
 import Rhino.Geometry as rg
 
+from rbla_cad import polygons, usertext
 from rbla_cad import runner as rrun
 from rbla_cad import result as rres
 from rbla_cad.model import ModelBuilder, ModelError, host_length_unit
@@ -37,9 +38,11 @@ def build_model(blocks, ids=None, roles=None, unit_weights=None, labels=None, fr
                 settings=None, tolerance=None):
     """Model JSON text from block geometry (Breps / Meshes) and per-block lists.
 
-    roles: free / fixed / moving_support (one per block, or one for all); analysis: seismic
-    (direction = the horizontal load direction, default +x) or settlement (direction = the
-    settlement direction, default gravity). settings: JSON text of extra analysis settings
+    roles: free / fixed / moving_support (one per block, or one for all; read like User Text
+    rbla.role, so `support` is fixed); analysis: seismic (direction = the horizontal load
+    direction, default +x), live or settlement (direction = the settlement direction, default
+    gravity), read like rbla.analysis. Interface geometry: planar pieces, merged like interface
+    objects (coplanar pieces that touch are one interface). settings: JSON text of extra analysis settings
     (friction_model, cone, pyramid_faces, formulation, time_limit). units: the document's when
     empty. Returns (json text, ids, report lines); raises ModelError listing every bad block."""
     doc = Rhino.RhinoDoc.ActiveDoc
@@ -54,32 +57,31 @@ def build_model(blocks, ids=None, roles=None, unit_weights=None, labels=None, fr
         bid = str(ids[i]) if ids and i < len(ids) and ids[i] else "B%d" % i
         try:
             v, f, vol, cen = rgeo.block_polyhedron(g, tol, bid)
-            mb.add_block(bid, v, f, role=str(_item(roles, i, "free")),
-                         unit_weight=_item(unit_weights, i), label=_item(labels, i),
-                         centroid=cen, volume=vol, friction=_item(frictions, i))
+        except ModelError as e:
+            issues.append("block %r: %s" % (bid, e))
+            continue
+        try:
+            role = usertext.read_value("block", "rbla.role", _item(roles, i, "free"),
+                                       "block %s" % usertext.q(bid))
+            mb.add_block(bid, v, f, role=role, unit_weight=_item(unit_weights, i),
+                         label=_item(labels, i), centroid=cen, volume=vol,
+                         friction=_item(frictions, i))
             out_ids.append(bid)
         except ModelError as e:
             issues.append(str(e))
     for i, s in enumerate(interfaces or []):
-        poly = rgeo.planar_polygon(s, tol)
-        pair = _item(interface_blocks, i)
-        if poly is None or not pair:
-            issues.append("interface %d: needs a planar surface or closed polyline and its two "
-                          "block ids ('idA, idB')" % i)
-            continue
-        try:
-            mb.add_interface([p.strip() for p in str(pair).split(",")], poly,
-                             label=_item(interface_labels, i))
-        except ModelError as e:
-            issues.append(str(e))
+        _add_interface(mb, i, s, _item(interface_blocks, i), _item(interface_labels, i), tol,
+                       issues)
     if issues:
         raise ModelError("%d problem(s):\n%s" % (len(issues), "\n".join(issues)))
     d = None
     if direction is not None:
         d = [direction.X, direction.Y, direction.Z]
-    if (analysis or "seismic") == "settlement":
+    kind = usertext.read_value("document", "rbla.analysis", analysis or "seismic",
+                               "analysis input")
+    if kind == "settlement":
         mb.set_settlement(direction=d)
-    elif analysis == "live":
+    elif kind == "live":
         mb.set_load_multiplier()
     else:
         mb.set_seismic(d or [1, 0, 0])
@@ -89,6 +91,24 @@ def build_model(blocks, ids=None, roles=None, unit_weights=None, labels=None, fr
     report = ["%d blocks, units %s/%s" % (len(doc_json["blocks"]), mb.length, mb.force)]
     report += ["warning: " + w for w in mb.warnings]
     return json.dumps(doc_json), out_ids, report
+
+
+def _add_interface(mb, i, geometry, pair, label, tol, issues):
+    """One interface input: its planar pieces merged (coplanar pieces that touch are one
+    interface, as in the User Text convention) between the two given blocks."""
+    shape = rgeo.shape_record(geometry, tol) if geometry is not None else {}
+    if shape.get("shape") != "polygons" or shape.get("error") or not pair:
+        issues.append("interface %d: needs planar surfaces, an open mesh or a closed planar "
+                      "polyline, and its two block ids ('idA, idB')%s"
+                      % (i, "; " + shape["error"] if shape.get("error") else ""))
+        return
+    try:
+        ids = usertext.read_value("interface", "rbla.blocks", pair, "interface %d" % i)
+        for g in polygons.merge_coplanar(shape["polygons"], tol,
+                                         usertext.DATA["interface_merge"]["relative"]):
+            mb.add_interface(ids, g["polygon"], label=label)
+    except ModelError as e:
+        issues.append(str(e))
 
 
 def solve(model_text, run=True, exe=None, timeout=None):
