@@ -8,6 +8,8 @@
 //    support edge give the smallest push, and a push towards the wall can grow without bound.
 #include "analysis/connectivity.hpp"
 #include "analysis/formulation.hpp"
+#include "io/model_reader.hpp"
+#include "io/result_writer.hpp"
 #include "validation_helpers.hpp"
 
 #include <array>
@@ -113,6 +115,19 @@ TEST(CannotStand, GroupJoinedOnlyAmongItselfIsNamedWithItsNearMisses) {
   EXPECT_EQ(num_moving(r), 2u);
   // They fall together: the joint between them does not crack.
   EXPECT_TRUE(r.mechanism.cracked_interfaces.empty());
+
+  // The result file: valid, no solver section (nothing was solved), the group and its near miss.
+  const json doc = io::analysis_result_json(m, r, {}, "");
+  const auto issues = io::validate_result_text(doc.dump());
+  EXPECT_TRUE(issues.empty()) << issues.front().pointer << ": " << issues.front().message;
+  EXPECT_FALSE(doc.contains("solver"));
+  EXPECT_EQ(doc["connectivity"]["num_unsupported_blocks"], 2);
+  EXPECT_EQ(doc["connectivity"]["unsupported_groups"][0]["blocks"], json::array({"low", "high"}));
+  ASSERT_EQ(doc["connectivity"]["near_misses"].size(), 1u);
+  EXPECT_EQ(doc["connectivity"]["near_misses"][0]["blocks"], json::array({"base", "low"}));
+  EXPECT_EQ(doc["connectivity"]["near_misses"][0]["distance"], 0.005);
+  EXPECT_EQ(doc["blocks"][2]["falling"], true);
+  EXPECT_EQ(doc["blocks"][1]["falling"], false);
 }
 
 // A weightless group joined to no support has nothing to make it fall: no verdict from it, a
@@ -150,6 +165,9 @@ TEST(CannotStand, StandsOnlyWhenPushedEvenWhenTheLiveLoadFindsNoMechanism) {
   EXPECT_TRUE(names_block(r, "B")) << r.verdict_text;
   EXPECT_TRUE(r.mechanism.blocks[2].moving);
   EXPECT_LT(r.mechanism.blocks[2].translation.x(), 0.0);  // it tips towards -x
+  const json doc = io::analysis_result_json(io::load_model_text(model.dump()).model, r, {}, "");
+  EXPECT_TRUE(io::validate_result_text(doc.dump()).empty());
+  EXPECT_NEAR(doc["minimum_load_multiplier"].get<double>(), 0.2, 1e-5);
   // Without the dead-load check the live-load problem alone says "no mechanism".
   model["analysis"]["check_dead_load"] = false;
   EXPECT_EQ(run(model).verdict, Verdict::NoMechanism);
