@@ -12,6 +12,7 @@
 #include "io/model_reader.hpp"
 #include "io/result_writer.hpp"
 #include "io/svg_writer.hpp"
+#include "io/warning_summary.hpp"
 #include "model/errors.hpp"
 
 #include <CLI/CLI.hpp>
@@ -52,11 +53,12 @@ std::string seconds_text(double seconds) {
   return out.str();
 }
 
-void report_warnings(const rbla::model::Model& model, const CommonOptions& options) {
+/// Every warning printed goes through here: one line per kind with its count and worst instance
+/// (io/warning_summary.hpp), or each warning with -v.
+void report_warnings(const std::vector<rbla::model::Warning>& warnings, const CommonOptions& options) {
   if (options.quiet) return;
-  for (const auto& warning : model.warnings) {
-    std::cerr << "rbla: warning [" << warning.code << "]" << (warning.pointer.empty() ? "" : " at " + warning.pointer)
-              << ": " << warning.message << "\n";
+  for (const std::string& line : rbla::io::warning_lines(warnings, options.verbose)) {
+    std::cerr << "rbla: warning " << line << "\n";
   }
 }
 
@@ -83,7 +85,7 @@ bool load(const CommonOptions& options, rbla::io::LoadedModel& loaded, int& exit
                         seconds_text(loaded.timings.read_seconds + loaded.timings.validate_seconds) + ", geometry " +
                         seconds_text(loaded.timings.geometry_seconds) + ", detection " +
                         seconds_text(loaded.timings.detect_seconds) + ")");
-  report_warnings(m, options);
+  report_warnings(m.warnings, options);
   return true;
 }
 
@@ -167,15 +169,17 @@ int run_solve(const CommonOptions& options) {
     std::cerr << "rbla: conic problem: " << error.what() << "\n";
     return kSolverFailure;
   }
-  for (const auto& warning : result.warnings) {
-    if (!options.quiet) std::cerr << "rbla: warning [" << warning.code << "]: " << warning.message << "\n";
+  report_warnings(result.warnings, options);
+  if (result.solver_ran) {
+    progress(options, "solved in " + seconds_text(result.solve_seconds) + " (" +
+                          std::to_string(result.solver_info.iterations) + " interior-point iterations" +
+                          (result.non_associative.empty()
+                               ? std::string()
+                               : ", " + std::to_string(result.non_associative.size()) + " non-associative steps") +
+                          "; assembly " + seconds_text(result.assemble_seconds) + ")");
+  } else {
+    progress(options, "no solve ran (assembly " + seconds_text(result.assemble_seconds) + ")");
   }
-  progress(options, "solved in " + seconds_text(result.solve_seconds) + " (" +
-                        std::to_string(result.solver_info.iterations) + " interior-point iterations" +
-                        (result.non_associative.empty()
-                             ? std::string()
-                             : ", " + std::to_string(result.non_associative.size()) + " non-associative steps") +
-                        "; assembly " + seconds_text(result.assemble_seconds) + ")");
   std::cout << result.verdict_text << "\n";
 
   rbla::io::StageTimings timings = loaded.timings;
@@ -225,7 +229,8 @@ int main(int argc, char** argv) {
   solve->add_option("--dump-problem", options.dump_problem_path,
                     "Write the conic problem for other solvers: CBF, or free MPS when the name ends in .mps (LP only)");
   solve->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
-  solve->add_flag("-v,--verbose", options.verbose, "Interior-point iteration log on standard error");
+  solve->add_flag("-v,--verbose", options.verbose,
+                  "Interior-point iteration log and every warning on its own line on standard error");
   solve->add_option("--threads", options.threads,
                     "Threads per conic solve: 2 (default) splits large problems over two cores, 1 keeps to one")
       ->check(CLI::Range(1, 2));
@@ -233,12 +238,14 @@ int main(int argc, char** argv) {
   CLI::App* validate = app.add_subcommand("validate", "Check a model against the schema and its geometry");
   validate->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
   validate->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+  validate->add_flag("-v,--verbose", options.verbose, "Every warning on its own line (default: one line per kind)");
 
   CLI::App* info = app.add_subcommand("info", "Summarise a model: blocks, interfaces, contact points, warnings");
   info->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
   info->add_option("-o,--output", options.output_path,
                    "Also write the summary as a result JSON with status model_only ('-' for standard output)");
   info->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+  info->add_flag("-v,--verbose", options.verbose, "Every warning on its own line (default: one line per kind)");
 
   try {
     app.parse(argc, argv);

@@ -18,7 +18,7 @@ using model::Vec3;
 enum class Verdict {
   Collapse,       ///< a mechanism forms at the load multiplier (or base reaction) reported
   NoMechanism,    ///< the live load can grow without bound: no collapse (alpha unbounded)
-  CannotStand,    ///< infeasible under dead load alone: the falling blocks are reported
+  CannotStand,    ///< the dead load alone cannot be carried: the falling blocks are reported
   SolverFailure,  ///< the conic solver failed numerically; no number is reported
   TimeLimit,      ///< the time limit ran out before an answer
   IterationLimit, ///< the interior-point iteration limit ran out before an answer
@@ -102,6 +102,28 @@ struct ProblemSize {
   long num_nonzeros = 0;
 };
 
+/// Free blocks that no chain of interfaces joins to a support (analysis/connectivity.hpp): they
+/// are joined among themselves (or a single block) and to nothing that could hold them.
+struct UnsupportedGroup {
+  std::vector<int> blocks;        ///< indices into model.blocks, ascending
+  bool touches_nothing = false;   ///< a single block with no interface at all
+  bool carries_dead_load = true;  ///< false: weightless and unloaded, nothing makes it fall
+};
+
+/// What the connectivity check found before any solve.
+struct Connectivity {
+  bool checked = false;
+  std::vector<UnsupportedGroup> groups;
+  std::size_t num_near_misses = 0;         ///< model.near_misses.size()
+  std::vector<int> near_misses_at_groups;  ///< indices into model.near_misses with a block of a group
+  /// Blocks in groups that carry dead load: the structure cannot stand while they exist.
+  std::size_t num_falling_blocks() const {
+    std::size_t n = 0;
+    for (const auto& group : groups) n += group.carries_dead_load ? group.blocks.size() : 0;
+    return n;
+  }
+};
+
 struct AnalysisResult {
   Verdict verdict = Verdict::SolverFailure;
   std::string verdict_text;  ///< one sentence for people
@@ -115,6 +137,9 @@ struct AnalysisResult {
 
   std::optional<double> load_multiplier;  ///< when Collapse in a load-multiplier analysis
   std::optional<double> base_reaction;    ///< kN, when Collapse in a settlement analysis
+  /// The smallest admissible load multiplier, when it is above zero: the structure stands only
+  /// while pushed by at least this much live load (CannotStand).
+  std::optional<double> minimum_load_multiplier;
   /// kN, the reaction before settlement (analysis/initial_reaction.hpp: the structure as one rigid
   /// body on uniformly elastic ground); with Collapse under settlement, when defined.
   std::optional<double> initial_base_reaction;
@@ -125,6 +150,8 @@ struct AnalysisResult {
   WorkBalance work;
   Accuracy accuracy;
 
+  Connectivity connectivity;
+  bool solver_ran = false;                        ///< false when no conic solve ran (solver_info is then empty)
   conic::Info solver_info;                        ///< of the last conic solve
   std::vector<conic::IterationRow> interior_point_history;  ///< of the last conic solve
   std::vector<NonAssociativeStep> non_associative;

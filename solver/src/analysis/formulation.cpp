@@ -21,40 +21,82 @@ Vec3 axis_vector(int axis) {
   return e;
 }
 
-/// Why `axis` is not a planar extrusion axis of the model; empty when it is.
-std::string planar_obstacle(const model::Model& m, int axis, double& depth) {
+/// The planar reduction (3 rows per block, the corners of an interface summed at its two ends)
+/// is exact when the 3-D problem is symmetric about the mid-plane normal to the axis and
+/// invariant along it: then a symmetric optimum exists (average any optimum with its mirror
+/// image), its out-of-plane forces and moments cancel, and any planar solution lifts back with
+/// each end force split between its two corners. That needs the whole arrangement to be an
+/// extrusion, not only each block: every free block a right prism over the same depth, every
+/// interface spanning that depth, and every load in the mid-plane. An interface that covers only
+/// part of the depth (a block overhanging the edge of its support along the axis) carries a
+/// moment about the in-plane axes that the planar rows drop.
+
+/// Why the free blocks are not right prisms along `axis` over one depth [lo, hi]; empty when they are.
+std::string prism_obstacle(const model::Model& m, int axis, double& lo, double& hi) {
   const Vec3 e = axis_vector(axis);
   const std::string name = std::string(1, static_cast<char>('x' + axis));
-  if (std::abs(e.dot(m.gravity)) > kParallelTolerance) return "gravity is along " + name;
   const double tol = m.distance_tolerance();
-  // Only blocks with equilibrium equations must be prisms over one depth: a support enters the
-  // problem only through its interfaces, which are checked below.
-  double lo0 = 0.0, hi0 = 0.0;
   const model::Block* first = nullptr;
   for (const model::Block& block : m.blocks) {
+    // A support enters the problem only through its interfaces, which are checked apart.
     if (block.is_support()) continue;
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    double block_lo = std::numeric_limits<double>::infinity(), block_hi = -block_lo;
     for (const Vec3& v : block.vertices) {
-      lo = std::min(lo, v[axis]);
-      hi = std::max(hi, v[axis]);
+      block_lo = std::min(block_lo, v[axis]);
+      block_hi = std::max(block_hi, v[axis]);
     }
     if (!first) {
       first = &block;
-      lo0 = lo;
-      hi0 = hi;
-    } else if (std::abs(lo - lo0) > tol || std::abs(hi - hi0) > tol) {
+      lo = block_lo;
+      hi = block_hi;
+    } else if (std::abs(block_lo - lo) > tol || std::abs(block_hi - hi) > tol) {
       return "blocks '" + first->id + "' and '" + block.id + "' do not span the same depth along " + name;
     }
     for (const auto& face : block.faces) {
       const double c = std::abs(geometry::face_geometry(block.vertices, face).normal.dot(e));
       if (c > 1e-9 && c < 1.0 - 1e-9) return "block '" + block.id + "' is not a prism along " + name;
     }
+    // Faces only parallel or normal to the axis still allow steps (a block narrower along the
+    // axis in its upper part): a right prism has every vertex on one of its two end planes.
+    for (const Vec3& v : block.vertices) {
+      if (std::abs(v[axis] - lo) > tol && std::abs(v[axis] - hi) > tol) {
+        return "block '" + block.id + "' is not a prism along " + name + " (a vertex lies between its end faces)";
+      }
+    }
   }
-  depth = hi0 - lo0;
-  const double mid = 0.5 * (lo0 + hi0);
+  return "";
+}
+
+/// Why an interface does not span the whole depth [lo, hi] along `axis` as a rectangle; empty
+/// when every one does. The polygon lies in a plane containing the axis, inside the rectangle
+/// [lo, hi] x [its in-plane extent]; it is that rectangle when its area fills it.
+std::string interface_obstacle(const model::Model& m, int axis, double lo, double hi) {
+  const Vec3 e = axis_vector(axis);
+  const std::string name = std::string(1, static_cast<char>('x' + axis));
+  const double tol = m.distance_tolerance();
   for (const auto& contact : m.interfaces) {
     if (std::abs(contact.normal.dot(e)) > 1e-9) return "interface '" + contact.id + "' is not parallel to " + name;
+    const Vec3 t = e.cross(contact.normal).normalized();
+    double a_lo = std::numeric_limits<double>::infinity(), a_hi = -a_lo, s_lo = a_lo, s_hi = -a_lo;
+    for (const Vec3& p : contact.polygon) {
+      a_lo = std::min(a_lo, p[axis]);
+      a_hi = std::max(a_hi, p[axis]);
+      s_lo = std::min(s_lo, p.dot(t));
+      s_hi = std::max(s_hi, p.dot(t));
+    }
+    const double depth = hi - lo, width = s_hi - s_lo;
+    if (a_lo > lo + tol || a_hi < hi - tol || contact.area < depth * width - 2.0 * tol * (depth + width)) {
+      return "interface '" + contact.id + "' does not span the blocks' whole depth along " + name;
+    }
   }
+  return "";
+}
+
+/// Why the loads are not all in the mid-plane normal to `axis`; empty when they are.
+std::string load_obstacle(const model::Model& m, int axis, double mid) {
+  const Vec3 e = axis_vector(axis);
+  const std::string name = std::string(1, static_cast<char>('x' + axis));
+  const double tol = m.distance_tolerance();
   const model::AnalysisRequest& a = m.analysis;
   if (a.seismic_direction && std::abs(a.seismic_direction->dot(e)) > kParallelTolerance) {
     return "the seismic direction has a component along " + name;
@@ -72,6 +114,19 @@ std::string planar_obstacle(const model::Model& m, int axis, double& depth) {
     }
   }
   return "";
+}
+
+/// Why `axis` is not a planar extrusion axis of the model; empty when it is.
+std::string planar_obstacle(const model::Model& m, int axis, double& depth) {
+  if (std::abs(axis_vector(axis).dot(m.gravity)) > kParallelTolerance) {
+    return std::string("gravity is along ") + static_cast<char>('x' + axis);
+  }
+  double lo = 0.0, hi = 0.0;
+  std::string obstacle = prism_obstacle(m, axis, lo, hi);
+  if (obstacle.empty()) obstacle = interface_obstacle(m, axis, lo, hi);
+  if (obstacle.empty()) obstacle = load_obstacle(m, axis, 0.5 * (lo + hi));
+  depth = hi - lo;
+  return obstacle;
 }
 
 struct Scales {

@@ -19,8 +19,9 @@ namespace rbla::analysis {
 
 using model::Vec3;
 
-/// A planar scene: every block a right prism along `axis` over the same depth, every interface
-/// and load in the plane. Then each block has 3 equations and the problem is a linear program.
+/// A planar scene: every free block a right prism along `axis` over the same depth, every
+/// interface spanning that depth, every load in the mid-plane (formulation.cpp says why that is
+/// exact). Then each block has 3 equations and the problem is a linear program.
 struct PlanarFrame {
   bool planar = false;
   int axis = -1;              ///< extrusion axis (0 x, 1 y, 2 z)

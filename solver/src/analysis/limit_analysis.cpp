@@ -1,5 +1,6 @@
 #include "analysis/limit_analysis.hpp"
 
+#include "analysis/connectivity.hpp"
 #include "analysis/formulation.hpp"
 #include "analysis/initial_reaction.hpp"
 #include "analysis/mechanism.hpp"
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace rbla::analysis {
@@ -95,6 +97,23 @@ void record_initial_reaction(const model::Model& m, AnalysisResult& result) {
   }
 }
 
+/// The falling blocks by id (the first ten) and, for a structure held up only by its live load,
+/// the push it needs. A verdict of the connectivity check has its own sentence.
+std::string cannot_stand_text(const model::Model& m, const AnalysisResult& result) {
+  if (result.connectivity.num_falling_blocks() > 0) return unsupported_verdict_text(m, result.connectivity);
+  std::vector<int> falling;
+  for (std::size_t b = 0; b < result.mechanism.blocks.size(); ++b) {
+    if (result.mechanism.blocks[b].moving && !m.blocks[b].is_support()) falling.push_back(static_cast<int>(b));
+  }
+  std::string text = "Cannot stand under dead load alone";
+  if (result.minimum_load_multiplier) {
+    text += " (only a live load of at least alpha = " + format(*result.minimum_load_multiplier) + " holds it up)";
+  }
+  text += ": " + count(falling.size(), "block falls", "blocks fall");
+  if (!falling.empty()) text += ": " + quoted_block_ids(m, falling, 10);
+  return text + ".";
+}
+
 void write_verdict_text(const model::Model& m, AnalysisResult& result) {
   const std::string force_unit = m.units.force_name;
   std::size_t falling = 0;
@@ -124,7 +143,7 @@ void write_verdict_text(const model::Model& m, AnalysisResult& result) {
       result.verdict_text = "No mechanism: the live load can grow without bound (alpha unbounded).";
       break;
     case Verdict::CannotStand:
-      result.verdict_text = "Cannot stand under dead load alone: " + count(falling, "block falls", "blocks fall") + ".";
+      result.verdict_text = cannot_stand_text(m, result);
       break;
     case Verdict::SolverFailure:
       result.verdict_text = "No answer: the conic solver failed (" +
@@ -137,9 +156,10 @@ void write_verdict_text(const model::Model& m, AnalysisResult& result) {
 }
 
 // The admissible multipliers form an interval [alpha_min, alpha_max] (the problem is convex).
-// Maximising alpha answers "collapse at alpha_max" only if alpha = 0 is in it: a block resting
-// off-centre on a narrow post can be held by a push of 0.59 to 0.6 of its weight and by nothing
-// less. So alpha_min is found with the same solver (objective reversed, symbolic analysis kept);
+// Maximising alpha answers "collapse at alpha_max" (or "no mechanism" when alpha_max is
+// unbounded) only if alpha = 0 is in it: a block resting off-centre on a narrow post can be held
+// by a push of 0.59 to 0.6 of its weight and by nothing less, and one leaning away from a wall
+// by any push of at least 0.2. So alpha_min is found with the same solver (objective reversed, symbolic analysis kept);
 // above the threshold the structure cannot stand under its dead load, and the dual of that solve
 // (a mechanism on which the dead load does positive work) names the falling blocks.
 // analysis.check_dead_load = false skips this solve.
@@ -152,8 +172,9 @@ bool stands_only_when_pushed(const model::Model& m, const model::AnalysisRequest
   solver.update_c(-c_max);
   conic::Settings& settings = solver.settings();
   const conic::Settings saved = settings;
-  // Only alpha_min against the threshold below matters: a gap of a tenth of it is enough.
-  const double threshold = std::max(1e-5, 1e-3 * alpha_max);
+  // Only alpha_min against the threshold below matters: a gap of a tenth of it is enough. An
+  // unbounded alpha_max (no mechanism under the live load) leaves the absolute floor.
+  const double threshold = std::max(1e-5, std::isfinite(alpha_max) ? 1e-3 * alpha_max : 0.0);
   settings.tol_gap_rel = settings.tol_gap_abs = 0.1 * threshold;
   settings.time_limit_seconds = std::max(time_left, 1e-6);
   const conic::Solution low = solver.solve();
@@ -166,6 +187,7 @@ bool stands_only_when_pushed(const model::Model& m, const model::AnalysisRequest
   // alpha_max.
   if (!(alpha_min > threshold)) return false;
   read_certificate(m, formulation, low, result);
+  result.minimum_load_multiplier = alpha_min;
   result.warnings.push_back({"stands_only_when_pushed",
                              "the structure is in equilibrium only for load multipliers from " +
                                  format(alpha_min) + " up: without the live load it cannot stand",
@@ -261,11 +283,52 @@ void record_value(const model::Model& m, const Formulation& formulation, double 
   }
 }
 
+/// The connectivity check (connectivity.hpp), before any solve: a group of free blocks joined to
+/// no support that carries dead load decides the verdict; one that carries none is only a warning.
+bool unsupported_blocks_fall(const model::Model& m, AnalysisResult& result) {
+  result.connectivity = check_connectivity(m);
+  for (const UnsupportedGroup& group : result.connectivity.groups) {
+    if (group.carries_dead_load) continue;
+    result.warnings.push_back({"unsupported_unloaded_blocks",
+                               count(group.blocks.size(), "block", "blocks") + " from '" +
+                                   m.blocks[group.blocks.front()].id +
+                                   "' on are joined to no support; they carry no dead load, so only a live load "
+                                   "on them can move them",
+                               "/blocks/" + std::to_string(group.blocks.front())});
+  }
+  if (result.connectivity.num_falling_blocks() == 0) return false;
+  result.verdict = Verdict::CannotStand;
+  falling_groups_mechanism(m, result.connectivity, result.mechanism);
+  return true;
+}
+
+/// The verdict of the first solve, completed: the certificate of a structure that cannot stand,
+/// or the dead-load check of a load multiplier whether the live load finds a collapse or none.
+/// Returns true when the answer is a collapse the strategies may refine.
+bool settle_verdict(const model::Model& m, const Formulation& formulation, conic::ConicSolver& solver,
+                    const conic::Solution& solution, const Deadline& deadline, AnalysisResult& result) {
+  if (result.verdict == Verdict::CannotStand) {
+    read_certificate(m, formulation, solution, result);
+    return false;
+  }
+  const bool bounded = result.verdict == Verdict::Collapse;
+  if ((bounded || result.verdict == Verdict::NoMechanism) && !formulation.settlement) {
+    const double alpha_max =
+        bounded ? multiplier_value(formulation, solution.x) : std::numeric_limits<double>::infinity();
+    if (stands_only_when_pushed(m, m.analysis, formulation, solver, alpha_max, deadline.left(), result)) {
+      result.verdict = Verdict::CannotStand;
+      return false;
+    }
+  }
+  return bounded;
+}
+
 }  // namespace
 
-// The pipeline (STYLE.md, "analysis as a pipeline"): formulation, the associative solve, its
-// verdict (with the dead-load check for a load multiplier), then the strategies that refine a
-// collapse (pyramid bracket, non-associative scheme), and the sentence for people.
+// The pipeline (STYLE.md, "analysis as a pipeline"): formulation, the connectivity check, the
+// associative solve, its verdict (with the dead-load check for a load multiplier), then the
+// strategies that refine a collapse (pyramid bracket, non-associative scheme), and the sentence
+// for people.
 AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
   const Deadline deadline{Clock::now(), m.analysis.time_limit_seconds};
   const model::AnalysisRequest& request = m.analysis;
@@ -276,6 +339,10 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
   record_size(formulation, result);
   result.assemble_seconds = seconds_since(deadline.start);
   if (!options.dump_problem_path.empty()) dump_problem(formulation.problem, options.dump_problem_path);
+  if (unsupported_blocks_fall(m, result)) {
+    write_verdict_text(m, result);
+    return result;
+  }
 
   if (deadline.left() <= 0.0) {
     result.verdict = Verdict::TimeLimit;
@@ -287,6 +354,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
   if (options.progress) solver.set_progress_callback(options.progress);
   conic::Solution solution = solver.solve();
   result.solve_seconds += seconds_since(solve_start);
+  result.solver_ran = true;
   result.solver_info = solution.info;
   result.interior_point_history = solution.info.history;
   result.verdict = verdict_of(solution.info.status, formulation.settlement);
@@ -297,13 +365,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
                                ""});
   }
 
-  if (result.verdict == Verdict::CannotStand) {
-    read_certificate(m, formulation, solution, result);
-  } else if (result.verdict == Verdict::Collapse && !formulation.settlement &&
-             stands_only_when_pushed(m, request, formulation, solver,
-                                     multiplier_value(formulation, solution.x), deadline.left(), result)) {
-    result.verdict = Verdict::CannotStand;
-  } else if (result.verdict == Verdict::Collapse) {
+  if (settle_verdict(m, formulation, solver, solution, deadline, result)) {
     read_solution(m, formulation, solution, true, {}, result);
     double value = multiplier_value(formulation, solution.x);
     if (request.pyramid_bracket) {

@@ -28,8 +28,4 @@ struct AnalysisOptions {
 /// outcome, including failures, is a Verdict in the result.
 AnalysisResult analyse(const model::Model& model, const AnalysisOptions& options = {});
 
-/// Contact states are read from relative velocities: components below this fraction of the
-/// largest relative velocity in the mechanism count as zero.
-inline constexpr double kVelocityThreshold = 1e-5;
-
 }  // namespace rbla::analysis

@@ -15,6 +15,15 @@ std::string format(double value, int precision) {
   return out.str();
 }
 
+std::string quoted_block_ids(const model::Model& m, const std::vector<int>& blocks, std::size_t shown) {
+  std::string text;
+  for (std::size_t k = 0; k < blocks.size() && k < shown; ++k) {
+    text += (k == 0 ? "'" : ", '") + m.blocks[blocks[k]].id + "'";
+  }
+  if (blocks.size() > shown) text += ", ... (" + std::to_string(blocks.size() - shown) + " more)";
+  return text;
+}
+
 namespace {
 
 /// Virtual power of the dead and live loads for the block motions (kN m per unit time).
@@ -91,7 +100,7 @@ void read_solution(const model::Model& m, const Formulation& f, const conic::Sol
   result.mechanism.normalisation = f.settlement ? Normalisation::UnitSettlement : Normalisation::MaxTranslation;
   // One unit of the user's length: displacements read in the user's units come out as 1.
   normalise(m, f, result.mechanism.normalisation, m.units.length_to_m, result.mechanism.blocks);
-  fill_interfaces(m, f, forces, associative, result.mechanism);
+  fill_interfaces(m, corner_forces(m, f, forces), associative, result.mechanism);
 
   double dissipation = 0.0;
   if (!radii.empty()) {
@@ -133,8 +142,7 @@ void read_certificate(const model::Model& m, const Formulation& f, const conic::
   result.mechanism.blocks = block_velocities(m, f, solution.y);
   result.mechanism.normalisation = Normalisation::MaxTranslation;
   normalise(m, f, Normalisation::MaxTranslation, m.units.length_to_m, result.mechanism.blocks);
-  const std::vector<Vec3> no_forces(f.points.size(), Vec3::Zero());
-  fill_interfaces(m, f, no_forces, true, result.mechanism);
+  fill_interfaces(m, {}, true, result.mechanism, MotionKind::Certificate);
 }
 
 void record_size(const Formulation& f, AnalysisResult& result) {

@@ -35,6 +35,10 @@ struct Deadline {
 /// A number for messages, `precision` significant digits.
 std::string format(double value, int precision = 6);
 
+/// Block ids for messages: the first `shown` of `blocks` (indices into model.blocks), quoted,
+/// then how many more there are.
+std::string quoted_block_ids(const model::Model& m, const std::vector<int>& blocks, std::size_t shown);
+
 /// Conic settings for one solve of the request, with `time_left` seconds.
 conic::Settings solver_settings(const model::AnalysisRequest& request, const AnalysisOptions& options,
                                 double time_left);

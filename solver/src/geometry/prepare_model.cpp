@@ -114,7 +114,7 @@ void prepare_block(model::Block& block, std::size_t index, double model_toleranc
                           name + ": face " + std::to_string(f) + " deviates from its plane by " +
                               length_text(face.max_plane_deviation, units) +
                               " (more than the distance tolerance); contacts on it are approximate",
-                          face_pointer});
+                          face_pointer, face.max_plane_deviation});
     }
   }
   if (!faces_ok) return;
@@ -152,14 +152,14 @@ void prepare_block(model::Block& block, std::size_t index, double model_toleranc
     warnings.push_back({"cad_volume_mismatch",
                         name + ": the CAD volume " + format(*block.cad_volume / l3) + " differs from the volume " +
                             format(block.volume / l3) + " computed from its faces; the computed one is used",
-                        pointer + "/volume"});
+                        pointer + "/volume", std::abs(*block.cad_volume - block.volume) / block.volume});
   }
   if (block.cad_centroid &&
       (*block.cad_centroid - block.centroid).norm() > std::max(kCadCentroidTolerance * diagonal, model_tolerance)) {
     warnings.push_back({"cad_centroid_mismatch",
                         name + ": the CAD centroid is " + length_text((*block.cad_centroid - block.centroid).norm(), units) +
                             " from the centroid computed from its faces; the computed one is used",
-                        pointer + "/centroid"});
+                        pointer + "/centroid", (*block.cad_centroid - block.centroid).norm()});
   }
 }
 

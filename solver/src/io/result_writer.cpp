@@ -1,5 +1,9 @@
 #include "io/result_writer.hpp"
 
+#include "io/warning_summary.hpp"
+
+#include <algorithm>
+
 namespace rbla::io {
 
 using nlohmann::json;
@@ -62,26 +66,38 @@ json warning_json(const model::Warning& warning) {
 
 }  // namespace
 
-json warnings_json(const model::Model& model) {
+json warnings_json(const std::vector<model::Warning>& warnings) {
   json list = json::array();
-  for (const auto& warning : model.warnings) list.push_back(warning_json(warning));
+  for (const std::size_t i : listed_warnings(warnings)) list.push_back(warning_json(warnings[i]));
   return list;
 }
 
+json warning_summary_json(const std::vector<model::Warning>& warnings) {
+  const std::vector<std::size_t> listed = listed_warnings(warnings);
+  json summary = json::array();
+  for (const WarningKind& kind : summarise_warnings(warnings)) {
+    const auto written = std::count_if(listed.begin(), listed.end(),
+                                       [&](std::size_t i) { return warnings[i].code == kind.code; });
+    summary.push_back({{"code", kind.code}, {"count", kind.count}, {"listed", written}});
+  }
+  return summary;
+}
+
 json model_only_result(const model::Model& model, const StageTimings& timings, const std::string& source) {
-  json result{{"schema_version", "1.1.0"},
+  json result{{"schema_version", "1.2.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
               {"verdict", "Model read and checked; no analysis was run."},
               {"units", {{"length", model.units.length_name}, {"force", model.units.force_name}}},
               {"model_summary", model_summary_json(model)},
-              {"warnings", warnings_json(model)},
+              {"warnings", warnings_json(model.warnings)},
               {"timings",
                {{"read_seconds", timings.read_seconds},
                 {"validate_seconds", timings.validate_seconds},
                 {"geometry_seconds", timings.geometry_seconds},
                 {"detect_seconds", timings.detect_seconds},
                 {"total_seconds", timings.total_seconds}}}};
+  if (!model.warnings.empty()) result["warning_summary"] = warning_summary_json(model.warnings);
   json source_info = json::object();
   if (!source.empty() && source != "-") source_info["source"] = source;
   if (!model.title.empty()) source_info["title"] = model.title;
@@ -108,6 +124,37 @@ json timings_json(const StageTimings& timings, const analysis::AnalysisResult& r
               {"total_seconds", timings.total_seconds}};
 }
 
+/// Near misses of interface detection listed with a connectivity verdict (the count is given).
+constexpr std::size_t kMaxNearMissesListed = 100;
+
+json connectivity_json(const model::Model& model, const analysis::Connectivity& connectivity) {
+  const double l = model.units.length_to_m;
+  json groups = json::array();
+  std::size_t unsupported = 0;
+  for (const analysis::UnsupportedGroup& group : connectivity.groups) {
+    json ids = json::array();
+    for (int b : group.blocks) ids.push_back(model.blocks[b].id);
+    unsupported += group.blocks.size();
+    groups.push_back({{"blocks", ids},
+                      {"touches_nothing", group.touches_nothing},
+                      {"carries_dead_load", group.carries_dead_load}});
+  }
+  json misses = json::array();
+  for (std::size_t k = 0; k < connectivity.near_misses_at_groups.size() && k < kMaxNearMissesListed; ++k) {
+    const model::NearMiss& miss = model.near_misses[connectivity.near_misses_at_groups[k]];
+    misses.push_back({{"blocks", {model.blocks[miss.block_a].id, model.blocks[miss.block_b].id}},
+                      {"faces", {miss.face_a, miss.face_b}},
+                      {"distance", miss.distance / l},
+                      {"angle_degrees", miss.angle_degrees},
+                      {"overlap_area", miss.overlap_area / (l * l)}});
+  }
+  return json{{"num_unsupported_blocks", unsupported},
+              {"unsupported_groups", groups},
+              {"num_near_misses", connectivity.num_near_misses},
+              {"num_near_misses_at_unsupported", connectivity.near_misses_at_groups.size()},
+              {"near_misses", misses}};
+}
+
 }  // namespace
 
 json analysis_result_json(const model::Model& model, const analysis::AnalysisResult& result,
@@ -128,8 +175,9 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
   if (result.planar) analysis["planar_axis"] = axis_name(result.planar_axis);
   out["analysis"] = analysis;
 
+  if (result.connectivity.checked) out["connectivity"] = connectivity_json(model, result.connectivity);
   const conic::Info& info = result.solver_info;
-  out["solver"] = {{"name", "rbla conic interior point (" + info.backend + ")"},
+  if (result.solver_ran) out["solver"] = {{"name", "rbla conic interior point (" + info.backend + ")"},
                    {"version", RBLA_VERSION},
                    {"status", status_name(info.status)},
                    {"iterations", info.iterations},
@@ -168,6 +216,7 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
   out["convergence"] = convergence;
 
   if (result.load_multiplier) out["load_multiplier"] = non_negative(*result.load_multiplier);
+  if (result.minimum_load_multiplier) out["minimum_load_multiplier"] = non_negative(*result.minimum_load_multiplier);
   if (result.base_reaction) {
     json moving = json::array();
     for (const auto& block : model.blocks) {
@@ -269,9 +318,10 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
     }
   }
 
-  json warnings = warnings_json(model);
-  for (const auto& warning : result.warnings) warnings.push_back(warning_json(warning));
-  out["warnings"] = warnings;
+  std::vector<model::Warning> warnings = model.warnings;
+  warnings.insert(warnings.end(), result.warnings.begin(), result.warnings.end());
+  out["warnings"] = warnings_json(warnings);
+  if (!warnings.empty()) out["warning_summary"] = warning_summary_json(warnings);
   return out;
 }
 

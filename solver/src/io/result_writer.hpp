@@ -24,8 +24,12 @@ struct StageTimings {
 /// The `model_summary` section: counts, bounding box and total weight in the model's units.
 nlohmann::json model_summary_json(const model::Model& model);
 
-/// The `warnings` section.
-nlohmann::json warnings_json(const model::Model& model);
+/// The `warnings` section: every kind, at most io::kMaxWarningsPerCode instances of each
+/// (warning_summary.hpp), the worst among them.
+nlohmann::json warnings_json(const std::vector<model::Warning>& warnings);
+
+/// The `warning_summary` section: per code, how many warnings there were and how many are listed.
+nlohmann::json warning_summary_json(const std::vector<model::Warning>& warnings);
 
 /// A complete result for a run that stopped after the model stage (status `model_only`):
 /// no analysis, no numbers that were not computed.

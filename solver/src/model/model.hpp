@@ -147,6 +147,9 @@ struct Warning {
   std::string code;
   std::string message;
   std::string pointer;
+  /// How far off this instance is, in its code's own measure (a length in m, a ratio); the
+  /// largest of a code is its worst instance. 0 when the code has no measure.
+  double magnitude = 0.0;
 };
 
 struct Model {
