@@ -89,7 +89,9 @@ TEST_P(StiffCaseTest, VerdictValueAndNoNaN) {
       const bool settlement = r.base_reaction.has_value();
       const double na_tol = c.model["analysis"]["non_associative"].value("tolerance", 1e-4);
       if (settlement || na_tol * std::abs(value) >= 1e-7) {
-        EXPECT_TRUE(r.non_associative_converged) << r.non_associative.size() << " steps at tolerance " << na_tol;
+        EXPECT_TRUE(r.non_associative_converged) << r.non_associative.size() << " steps at tolerance " << na_tol
+                                                 << ", fixed-point gap " << r.non_associative_gap << " after "
+                                                 << r.non_associative_checks << " tests";
       }
       // And at rbla's default tolerance (1e-4), what users run: it must converge where reachable,
       // to within 10 x 1e-4 of the reference (a damped fixed point stopped at a 1e-4 change).

@@ -88,7 +88,7 @@ std::vector<Named> invariant_models() {
                                box_block("B", 0.0, 0.0, 0.0, 4.0, 1.0, 1.0)});
     json model = model_with(blocks);
     model["defaults"] = {{"unit_weight", 18.0}, {"friction", 0.6}};
-    model["analysis"] = {{"type", "settlement"}, {"non_associative", {{"max_iterations", 200}, {"tolerance", 1e-7}}}};
+    model["analysis"] = {{"type", "settlement"}, {"non_associative", {{"max_iterations", 200}, {"tolerance", 1e-6}}}};
     out.push_back({"settlement", model});
   }
   out.push_back({"drawer", drawer("associative", 0.6)});
@@ -207,7 +207,7 @@ TEST(Invariants, PlanarEquals3d) {
       planar["analysis"]["formulation"] = "planar";
       three["analysis"]["formulation"] = "3d";
       planar["analysis"]["non_associative"] = three["analysis"]["non_associative"] =
-          json{{"max_iterations", 200}, {"tolerance", 1e-7}};
+          json{{"max_iterations", 200}, {"tolerance", 1e-6}};
       const auto p = run(planar), t = run(three);
       ASSERT_EQ(p.verdict, Verdict::Collapse) << p.verdict_text;
       ASSERT_EQ(t.verdict, Verdict::Collapse) << t.verdict_text;
@@ -229,10 +229,10 @@ TEST(Invariants, UnitInvariance) {
       s.friction_model = friction;
       if (out_of_plane) s.seismic_direction = json::array({std::cos(M_PI / 6), std::sin(M_PI / 6), 0.0});
       json m = finish(running_bond_blocks(4, 4), s);
-      // The non-associative scheme stops once alpha moves by less than its tolerance, so two runs
-      // that differ only by rounding may stop a step apart: converge them tightly.
+      // The non-associative scheme stops once its state no longer dilates (to its tolerance); two
+      // runs that differ only by rounding take the same steps and report the same state.
       if (friction == "non_associative")
-        m["analysis"]["non_associative"] = json{{"max_iterations", 200}, {"tolerance", 1e-9}};
+        m["analysis"]["non_associative"] = json{{"max_iterations", 200}, {"tolerance", 1e-6}};
       json mm = scaled(m, 1000.0);
       mm["units"] = {{"length", "mm"}, {"force", "N"}, {"unit_weight", "N/mm3"}};
       mm["defaults"]["unit_weight"] = 18.0e3 / 1.0e9;

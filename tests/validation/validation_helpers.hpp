@@ -44,8 +44,8 @@ inline json analysis_of(const Case& s) {
             {"formulation", s.formulation},
             {"cone", s.cone},
             {"pyramid_faces", s.pyramid_faces},
-            // Tight non-associative stopping so converged values are comparable to closed forms.
-            {"non_associative", {{"max_iterations", 200}, {"tolerance", 1e-7}}}};
+            // Non-associative states compatible to 1e-6 (the work balance the tests check).
+            {"non_associative", {{"max_iterations", 200}, {"tolerance", 1e-6}}}};
   if (!s.seismic_direction.is_null()) a["seismic"] = {{"direction", s.seismic_direction}};
   return a;
 }

@@ -72,7 +72,7 @@ struct Mechanism {
 struct WorkBalance {
   double live_work = 0.0;
   double dead_work = 0.0;
-  double dissipation = 0.0;      ///< friction work at sliding points (non-associative); 0 otherwise
+  double dissipation = 0.0;      ///< friction work mu N |slip| at sliding points (non-associative); 0 otherwise
   double kinematic_value = 0.0;  ///< alpha (dimensionless) or base reaction (kN) from the balance
   double relative_error = 0.0;   ///< |static - kinematic| / max(1, |static|) (force units for reactions)
 };
@@ -87,12 +87,18 @@ struct Accuracy {
   std::optional<std::pair<double, double>> pyramid_bracket;
 };
 
-/// One solve of the non-associative scheme (Gilbert et al. 2006; Portioli et al. 2014).
+/// One solve of the non-associative scheme (analysis/non_associative.hpp); step 0 is the
+/// associative solve.
 struct NonAssociativeStep {
   int iteration = 0;
-  double value = 0.0;                    ///< alpha, or the base reaction in kN
-  double max_normal_force_change = 0.0;  ///< kN
+  double value = 0.0;       ///< alpha, or the base reaction in kN, of the step's state
+  /// Work of the normal forces on the normal motion of the contact points (sum N |d_n|), relative
+  /// to the value: how far the state is from compatible with a mechanism without dilatancy (0).
+  double dilatancy = 0.0;
+  double shift_change = 0.0;  ///< largest change of the shifts s_k it produced, relative to the largest
+  double max_normal_force_change = 0.0;  ///< kN, largest change of a point's normal force from the previous step
   int interior_point_iterations = 0;
+  double seconds = 0.0;       ///< of the step's conic solve
 };
 
 struct ProblemSize {
@@ -156,6 +162,14 @@ struct AnalysisResult {
   std::vector<conic::IterationRow> interior_point_history;  ///< of the last conic solve
   std::vector<NonAssociativeStep> non_associative;
   bool non_associative_converged = false;
+  std::string non_associative_stop;  ///< why the scheme stopped, for people
+  int non_associative_checks = 0;    ///< fixed-point tests (solves of the capped problem)
+  /// Of the last test: how much more the capped problem carries than the state, relative to
+  /// its value (alpha_capped - alpha, or R - R_capped, over the value); 0 at a fixed point.
+  double non_associative_gap = 0.0;
+  /// The values of all states compatible with the mechanism found (alpha, or R in kN): non-
+  /// associative collapse is not unique; the conservative end is the one reported.
+  std::optional<std::pair<double, double>> non_associative_range;
   ProblemSize size;
 
   double assemble_seconds = 0.0;

@@ -366,13 +366,13 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
   }
 
   if (settle_verdict(m, formulation, solver, solution, deadline, result)) {
-    read_solution(m, formulation, solution, true, {}, result);
+    read_solution(m, formulation, solution, true, result);
     double value = multiplier_value(formulation, solution.x);
     if (request.pyramid_bracket) {
       bracket_pyramids(m, request, formulation_options, value, deadline.left(), options, result);
     }
     if (request.friction_model == model::FrictionModel::NonAssociative) {
-      run_non_associative(m, formulation, formulation_options, solution, deadline, options, value, result);
+      run_non_associative(m, formulation, solver, solution, deadline, value, result);
     }
     if (result.verdict == Verdict::Collapse) record_value(m, formulation, value, result);
   }

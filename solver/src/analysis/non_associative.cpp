@@ -1,162 +1,403 @@
 #include "analysis/non_associative.hpp"
 
+#include "analysis/mechanism.hpp"
+
+#include <Eigen/QR>
+
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <memory>
 
 namespace rbla::analysis {
 
 namespace {
 
-/// Non-associative steps whose alpha moved by less than this many times the scheme's tolerance
-/// are solved at the requested tolerances (they are likely to be the last step).
-constexpr double kTightStepFactor = 30.0;
+/// The cost is shifted by (1 + kSelectionShift) s to pick the conservative end of the optimal face
+/// (and by 1 - kSelectionShift for the other end): on that face -alpha + sum s N is constant, so
+/// the extra eps sum s N selects the state with the least friction at sliding points. For a linear
+/// program a small enough eps selects exactly (exact penalty); it is checked (on_face) and retried
+/// smaller once.
+constexpr double kSelectionShift = 1e-3;
+/// Anderson mixing memory (Walker & Ni 2011): two previous shifts were the best of 1 to 3 on the
+/// facade and church scenes (docs/benchmark).
+constexpr int kAndersonMemory = 2;
+/// Intermediate steps are solved to this relative gap; the shifts they feed have a floor of about
+/// 1e-4 relative (degenerate mechanisms), so tighter solves buy nothing. The reported states are
+/// solved at the requested tolerances.
+constexpr double kStepGap = 1e-6;
+/// Each step keeps the iterate at this relative gap and warm-starts the next step from it, blended
+/// with the central point by this weight (ConicSolver::set_warm_start).
+constexpr double kSnapshotGap = 1e-2;
+constexpr double kWarmStartWeight = 0.99;
+/// A step whose own state dilates by less than this (relative to the value) is tested (two more
+/// solves, see ShiftScheme::certify): the first such step, then every kCheckEvery steps; any step
+/// kCheckAlways steps after the last test. The state of a step whose mechanism is not unique (a
+/// squat wall sliding at mu on any of its bed joints) can keep dilating while the value settles.
+constexpr double kCheckDilatancy = 1e-2;
+constexpr int kCheckEvery = 3;
+constexpr int kCheckAlways = 10;
+
+/// s_k = mu_k |d_t,k|: the friction work rate a sliding point would need to dissipate without
+/// dilatancy, in the dual's own velocity units (formulation units, unnormalised).
+std::vector<double> slip_shift(const model::Model& m, const Formulation& f, const Eigen::VectorXd& y) {
+  const std::vector<BlockMotion> motions = block_velocities(m, f, y);
+  std::vector<double> shift(f.points.size(), 0.0);
+  for (std::size_t p = 0; p < f.points.size(); ++p) {
+    const FormulationPoint& point = f.points[p];
+    const model::ContactInterface& c = m.interfaces[point.interface_index];
+    const Vec3 d = point_velocity(m, motions, c.block_b, point.position) -
+                   point_velocity(m, motions, c.block_a, point.position);
+    shift[p] = point.friction * (d - d.dot(c.normal) * c.normal).norm();
+  }
+  return shift;
+}
+
+/// The associative cost plus factor * s_k on each point's normal force (N_k = sum_j (g_j . n) x_j).
+Eigen::VectorXd shifted_cost(const model::Model& m, const Formulation& f, const Eigen::VectorXd& cost,
+                             const Eigen::VectorXd& shift, double factor) {
+  Eigen::VectorXd c = cost;
+  for (std::size_t p = 0; p < f.points.size(); ++p) {
+    if (shift[p] == 0.0) continue;
+    const Vec3& n = m.interfaces[f.points[p].interface_index].normal;
+    for (const Generator& g : f.points[p].generators) c[g.variable] += factor * shift[p] * g.force.dot(n);
+  }
+  return c;
+}
+
+/// sum_k N_k |d_n,k| over the points: the work of the normal forces on normal motion, zero exactly
+/// when the state is compatible with the mechanism without dilatancy (sliding points keep
+/// contact, opening points carry nothing). In the problem's value units per unit live work.
+double dilatancy_work(const model::Model& m, const Formulation& f, const conic::Solution& forces_from,
+                      const Eigen::VectorXd& y) {
+  const std::vector<BlockMotion> motions = block_velocities(m, f, y);
+  const std::vector<Vec3> forces = f.point_forces(forces_from.x);
+  double work = 0.0;
+  for (std::size_t p = 0; p < f.points.size(); ++p) {
+    const FormulationPoint& point = f.points[p];
+    const model::ContactInterface& c = m.interfaces[point.interface_index];
+    const Vec3 d = point_velocity(m, motions, c.block_b, point.position) -
+                   point_velocity(m, motions, c.block_a, point.position);
+    work += std::max(0.0, forces[p].dot(c.normal)) / f.force_scale * std::abs(d.dot(c.normal));
+  }
+  return f.settlement ? work * f.force_scale : work;
+}
+
+/// Anderson mixing, type II (Walker & Ni 2011, SIAM J. Numer. Anal. 49(4)), for the fixed point
+/// s = G(s), with a damped plain step (weight `beta`) as the base and the history dropped when
+/// the residual grows (the map is only piecewise smooth: an active-set change invalidates it).
+class AndersonMixing {
+ public:
+  AndersonMixing(int memory, double beta) : memory_(memory), beta_(beta) {}
+
+  Eigen::VectorXd next(const Eigen::VectorXd& s, const Eigen::VectorXd& g) {
+    const Eigen::VectorXd r = g - s;
+    if (last_s_.size() == s.size()) {
+      if (r.norm() > 2.0 * last_r_.norm()) {
+        ds_.clear();
+        dr_.clear();
+      } else {
+        ds_.push_back(s - last_s_);
+        dr_.push_back(r - last_r_);
+        if (static_cast<int>(ds_.size()) > memory_) {
+          ds_.pop_front();
+          dr_.pop_front();
+        }
+      }
+    }
+    last_s_ = s;
+    last_r_ = r;
+    Eigen::VectorXd mixed = s + beta_ * r;
+    if (!dr_.empty()) {
+      const Eigen::Index k = static_cast<Eigen::Index>(dr_.size());
+      Eigen::MatrixXd dR(s.size(), k), dS(s.size(), k);
+      for (Eigen::Index j = 0; j < k; ++j) {
+        dR.col(j) = dr_[j];
+        dS.col(j) = ds_[j];
+      }
+      const Eigen::VectorXd gamma = dR.colPivHouseholderQr().solve(r);
+      if (gamma.allFinite()) mixed -= (dS + beta_ * dR) * gamma;
+    }
+    return mixed.cwiseMax(0.0);  // a shift is a dissipation rate: never negative
+  }
+
+ private:
+  int memory_;
+  double beta_;
+  Eigen::VectorXd last_s_, last_r_;
+  std::deque<Eigen::VectorXd> ds_, dr_;
+};
+
+Eigen::VectorXd to_vector(const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())); }
+
+double relative_change(const Eigen::VectorXd& before, const Eigen::VectorXd& after) {
+  const double size = std::max(before.lpNorm<Eigen::Infinity>(), after.lpNorm<Eigen::Infinity>());
+  return size > 0.0 ? (after - before).lpNorm<Eigen::Infinity>() / size : 0.0;
+}
+
+/// One run of the scheme on the associative solver.
+class ShiftScheme {
+ public:
+  ShiftScheme(const model::Model& m, const Formulation& f, conic::ConicSolver& solver, const Deadline& deadline,
+              AnalysisResult& result)
+      : m_(m), f_(f), solver_(solver), deadline_(deadline), result_(result),
+        request_(m.analysis), cost_(solver.problem().c),
+        mixing_(kAndersonMemory, request_.non_associative_damping) {}
+
+  ~ShiftScheme() { solver_.update_c(cost_); }
+
+  void run(const conic::Solution& associative, double& value) {
+    Eigen::VectorXd shift = to_vector(slip_shift(m_, f_, associative.y));
+    normals_ = normal_forces(m_, f_, f_.point_forces(associative.x));
+    result_.non_associative.push_back({0, value, dilatancy_work(m_, f_, associative, associative.y) / scale(value), 0.0,
+                                       0.0, associative.info.iterations, associative.info.total_seconds});
+    if (shift.lpNorm<Eigen::Infinity>() == 0.0) {
+      // No point slides in the associative mechanism: it has no dilatancy to remove.
+      result_.non_associative_converged = true;
+      result_.non_associative_stop = "no contact point slides in the associative mechanism";
+      return;
+    }
+    int last_check = 0;
+    for (int step = 1; step <= request_.non_associative_max_iterations; ++step) {
+      conic::Solution next;
+      if (!solve(shifted_cost(m_, f_, cost_, shift, 1.0), kStepGap, next, step)) break;
+      const double step_value = multiplier_value(f_, next.x);
+      const Eigen::VectorXd rates = to_vector(slip_shift(m_, f_, next.y));
+      const double dilatancy = dilatancy_work(m_, f_, next, next.y) / scale(step_value);
+      result_.non_associative.push_back({step, step_value, dilatancy, relative_change(shift, rates),
+                                         normal_force_change(next), next.info.iterations, next.info.total_seconds});
+      // Certify when the step is close, every few steps: the step's own (analytic-centre) state
+      // can keep some dilatancy while another state of its optimal face has none, when the
+      // mechanism is not unique (a squat wall sliding at mu on any of its bed joints).
+      const int wait = dilatancy > kCheckDilatancy ? kCheckAlways : result_.non_associative_checks == 0 ? 0 : kCheckEvery;
+      if (step - last_check >= wait) {
+        last_check = step;
+        if (certify(next, shift)) {
+          result_.non_associative_converged = true;
+          result_.non_associative_stop = "the state passed the fixed-point test (shear capped at mu N)";
+          break;
+        }
+      }
+      last_step_ = std::move(next);
+      last_shift_ = shift;
+      if (last_check == step && capped_mechanism_.size() > 0) {
+        // A failed test: the capped problem's mechanism does not dilate at all, and its slip
+        // rates are a better next shift than the step's own (on the 1920-block facade the test's
+        // gap fell from 4e-3 to 1.4e-4 with them, and stalled near 4e-3 without).
+        shift = to_vector(slip_shift(m_, f_, capped_mechanism_));
+        mixing_ = AndersonMixing(kAndersonMemory, request_.non_associative_damping);
+      } else {
+        shift = mixing_.next(shift, rates);
+      }
+    }
+    if (!result_.non_associative_converged) {
+      if (last_step_.x.size() == 0) return;
+      if (result_.non_associative_stop.empty()) {
+        result_.non_associative_stop = "the step limit (analysis.non_associative.max_iterations) was reached";
+      }
+      certify(last_step_, last_shift_);
+    }
+    report(value);
+  }
+
+ private:
+  /// Scale of the value for relative measures: |alpha| (at least 1e-12), or |R| (at least a
+  /// millionth of the mean block weight).
+  double scale(double v) const {
+    return f_.settlement ? std::max(std::abs(v), 1e-6 * f_.force_scale) : std::max(std::abs(v), 1e-12);
+  }
+
+  /// Largest change of a point's normal force (kN) since the previous call.
+  double normal_force_change(const conic::Solution& solution) {
+    const std::vector<double> normals = normal_forces(m_, f_, f_.point_forces(solution.x));
+    double change = 0.0;
+    for (std::size_t p = 0; p < normals.size(); ++p) change = std::max(change, std::abs(normals[p] - normals_[p]));
+    normals_ = normals;
+    return change;
+  }
+
+  /// Solves with the given cost; false (after a warning) when no solution came back.
+  bool solve(const Eigen::VectorXd& cost, double gap, conic::Solution& out, int step) {
+    if (deadline_.left() <= 0.0) {
+      result_.verdict = Verdict::TimeLimit;
+      result_.non_associative_stop = "the time limit ran out";
+      return false;
+    }
+    conic::Settings& s = solver_.settings();
+    const conic::Settings saved = s;
+    s.tol_gap_rel = std::max(gap, request_.tol_relative_gap);
+    s.tol_gap_abs = std::max(gap, saved.tol_gap_abs);
+    s.tol_feas = std::max(gap, saved.tol_feas);
+    s.time_limit_seconds = std::max(deadline_.left(), 1e-6);
+    s.snapshot_gap_rel = request_.non_associative_warm_start ? kSnapshotGap : 0.0;
+    s.warm_start_weight = kWarmStartWeight;
+    solver_.update_c(cost);
+    if (!snapshot_.empty()) solver_.set_warm_start(snapshot_.x, snapshot_.y, snapshot_.z);
+    const auto start = Clock::now();
+    out = solver_.solve();
+    result_.solve_seconds += seconds_since(start);
+    s = saved;
+    if (!out.snapshot.empty()) snapshot_ = out.snapshot;
+    if (conic::has_solution(out.info.status)) return true;
+    result_.warnings.push_back({"non_associative_step_failed",
+                                "non-associative step " + std::to_string(step) + " ended with " +
+                                    conic::to_string(out.info.status) + "; the last completed step is reported",
+                                ""});
+    if (out.info.status == conic::SolveStatus::TimeLimit) result_.verdict = Verdict::TimeLimit;
+    if (out.info.status == conic::SolveStatus::Cancelled) result_.verdict = Verdict::Cancelled;
+    result_.non_associative_stop = std::string("a step ended with ") + conic::to_string(out.info.status);
+    return false;
+  }
+
+  /// Whether x (from a selection solve) lies on the optimal face of the step solved with `shift`:
+  /// its objective there within ten times that step's gap of the step's optimum.
+  bool on_face(const Eigen::VectorXd& x, const Eigen::VectorXd& shift, double optimum) const {
+    const double objective = shifted_cost(m_, f_, cost_, shift, 1.0).dot(x);
+    return std::abs(objective - optimum) <= 10.0 * kStepGap * std::max(1.0, std::abs(optimum));
+  }
+
+  /// The state at one end of the optimal face of `step` (solved with `shift`): factor 1 + eps is
+  /// the conservative end, 1 - eps the other. False when the selection left the face (or failed).
+  bool select(const conic::Solution& step, const Eigen::VectorXd& shift, double sign, conic::Solution& end) {
+    for (const double eps : {kSelectionShift, 0.1 * kSelectionShift}) {
+      if (!solve(shifted_cost(m_, f_, cost_, shift, 1.0 + sign * eps), request_.tol_relative_gap, end, 0)) return false;
+      if (on_face(end.x, shift, step.info.primal_objective)) return true;
+    }
+    return false;
+  }
+
+  /// Keeps the conservative state of `step`'s face (or, when that cannot be selected, the step's
+  /// own state) as the candidate to report, and tests it: true when it is optimal for the
+  /// cylinder problem built from its own normal forces (cylinder_confirms), whose mechanism is
+  /// then the candidate's.
+  bool certify(const conic::Solution& step, const Eigen::VectorXd& shift) {
+    candidate_.shift = shift;
+    candidate_.step = step;
+    candidate_.selected = select(step, shift, +1.0, candidate_.state);
+    if (!candidate_.selected) candidate_.state = step;
+    candidate_.mechanism_y = step.y;
+    candidate_.confirmed = cylinder_confirms(candidate_.state, candidate_.mechanism_y);
+    candidate_.dilatancy = dilatancy_work(m_, f_, candidate_.state, candidate_.mechanism_y) /
+                           scale(multiplier_value(f_, candidate_.state.x));
+    return candidate_.confirmed;
+  }
+
+  /// The fixed-point test of Gilbert, Casapulla & Ahmed (2006): with the shear of every point
+  /// capped at mu N_k of `state` (a cylinder, no dilatancy), is `state` still optimal? Its forces
+  /// satisfy the caps, so the capped problem's value is at least the state's; equal (within the
+  /// scheme's tolerance) means the capped problem's mechanism, which cannot dilate, is compatible
+  /// with the state: together they are a non-associative collapse state. The mechanism is then
+  /// written into `mechanism_y` (rows of the associative formulation).
+  bool cylinder_confirms(const conic::Solution& state, Eigen::VectorXd& mechanism_y) {
+    if (deadline_.left() <= 0.0) return false;
+    const std::vector<double> normals = normal_forces(m_, f_, f_.point_forces(state.x));
+    // A small floor keeps every cylinder with an interior.
+    std::vector<double> radii(normals.size());
+    for (std::size_t p = 0; p < radii.size(); ++p) {
+      radii[p] = std::max(1e-9 * f_.force_scale, f_.points[p].friction * normals[p]);
+    }
+    const auto start = Clock::now();
+    if (!cylinder_solver_) {
+      FormulationOptions options = f_.options;
+      options.friction_set = FrictionSet::Cylinder;
+      cylinder_ = build_formulation(m_, options);
+      result_.assemble_seconds += seconds_since(start);
+      conic::ConicProblem problem = cylinder_.problem;
+      problem.b = cylinder_.rhs_with_radii(radii);
+      cylinder_solver_ = std::make_unique<conic::ConicSolver>(std::move(problem), solver_.settings());
+    } else {
+      cylinder_solver_->update_b(cylinder_.rhs_with_radii(radii));
+    }
+    conic::Settings& s = cylinder_solver_->settings();
+    s = solver_.settings();
+    s.snapshot_gap_rel = 0.0;
+    s.time_limit_seconds = std::max(deadline_.left(), 1e-6);
+    const auto solve_start = Clock::now();
+    const conic::Solution capped = cylinder_solver_->solve();
+    result_.solve_seconds += seconds_since(solve_start);
+    ++result_.non_associative_checks;
+    if (!conic::has_solution(capped.info.status)) return false;
+    const double v_state = multiplier_value(f_, state.x), v_capped = multiplier_value(cylinder_, capped.x);
+    const double slack = request_.non_associative_tolerance * scale(v_state);
+    const bool confirmed = f_.settlement ? v_capped >= v_state - slack : v_capped <= v_state + slack;
+    result_.non_associative_gap = (f_.settlement ? v_state - v_capped : v_capped - v_state) / scale(v_state);
+    // The block rows come first in both formulations (radius rows follow them in the capped one).
+    capped_mechanism_ = Eigen::VectorXd::Zero(f_.problem.A.rows());
+    capped_mechanism_.head(cylinder_.first_radius_row) = capped.y.head(cylinder_.first_radius_row);
+    if (confirmed) mechanism_y = capped_mechanism_;
+    return confirmed;
+  }
+
+  void report(double& value) {
+    if (result_.verdict == Verdict::TimeLimit || result_.verdict == Verdict::Cancelled) return;
+    const Candidate& c = candidate_;
+    value = multiplier_value(f_, c.state.x);
+    conic::Solution other;
+    if (result_.non_associative_converged && c.selected && select(c.step, c.shift, -1.0, other)) {
+      const double v_other = multiplier_value(f_, other.x);
+      result_.non_associative_range = std::make_pair(std::min(value, v_other), std::max(value, v_other));
+    } else if (result_.non_associative_converged) {
+      result_.warnings.push_back({"non_associative_range_not_computed",
+                                  "the range of non-associative states compatible with the mechanism could not be "
+                                  "found; the value reported is one such state, not necessarily the most conservative",
+                                  "/analysis/friction_model"});
+    } else {
+      result_.warnings.push_back(
+          {"non_associative_not_converged",
+           "the non-associative scheme stopped after " + std::to_string(result_.non_associative.size() - 1) +
+               " steps (" + result_.non_associative_stop + ") with a state whose mechanism still dilates (" +
+               format(c.dilatancy, 3) +
+               " of the value); the state satisfies the friction condition, so its value is never above the "
+               "associative one, but it is not an exact non-associative collapse state",
+           "/analysis/non_associative/max_iterations"});
+    }
+    // The candidate's forces with the mechanism of its step: both are optimal for that step's
+    // problem, so they are complementary.
+    conic::Solution state = c.state;
+    state.y = c.mechanism_y;
+    result_.solver_info = c.state.info;
+    result_.interior_point_history = c.state.info.history;
+    result_.mechanism = Mechanism{};
+    result_.mechanism_seconds = 0.0;
+    read_solution(m_, f_, state, false, result_);
+  }
+
+  /// The state to report: the forces of `state` (a selection on `step`'s optimal face, or the
+  /// step itself) with the mechanism `mechanism_y` (the capped problem's when confirmed, else the
+  /// step's).
+  struct Candidate {
+    conic::Solution state, step;
+    Eigen::VectorXd shift, mechanism_y;
+    double dilatancy = 0.0;
+    bool selected = false;
+    bool confirmed = false;
+  };
+
+  const model::Model& m_;
+  const Formulation& f_;
+  conic::ConicSolver& solver_;
+  const Deadline& deadline_;
+  AnalysisResult& result_;
+  const model::AnalysisRequest& request_;
+  const Eigen::VectorXd cost_;
+  AndersonMixing mixing_;
+  conic::Iterate snapshot_;
+  std::vector<double> normals_;
+  conic::Solution last_step_;
+  Eigen::VectorXd last_shift_;
+  Candidate candidate_;
+  Formulation cylinder_;
+  std::unique_ptr<conic::ConicSolver> cylinder_solver_;
+  Eigen::VectorXd capped_mechanism_;  ///< of the last test, in the associative formulation's rows
+};
 
 }  // namespace
 
-void run_non_associative(const model::Model& m, const Formulation& formulation,
-                         const FormulationOptions& formulation_options, const conic::Solution& solution,
-                         const Deadline& deadline, const AnalysisOptions& options, double& value,
+void run_non_associative(const model::Model& m, const Formulation& formulation, conic::ConicSolver& solver,
+                         const conic::Solution& associative, const Deadline& deadline, double& value,
                          AnalysisResult& result) {
-  const model::AnalysisRequest& request = m.analysis;
-  auto time_left = [&] { return deadline.left(); };
-  // Gilbert et al. (2006), Portioli et al. (2014): replace each cone by a cylinder of radius
-  // mu N from the previous step, so sliding does not dilate; damp the radii
-  // (r <- d mu N + (1 - d) r), which stops the plain fixed point from oscillating
-  // (METHOD.md: alpha 0.37 -> 0.21 -> 0.25 ... undamped).
-  result.non_associative.push_back({0, value, 0.0, solution.info.iterations});
-  FormulationOptions cylinder_options = formulation_options;
-  cylinder_options.friction_set = FrictionSet::Cylinder;
-  const auto assemble_start = Clock::now();
-  const Formulation cylinder = build_formulation(m, cylinder_options);
-  result.assemble_seconds += seconds_since(assemble_start);
-  record_size(cylinder, result);
-
-  const std::vector<Vec3> forces = formulation.point_forces(solution.x);
-  std::vector<double> normals = normal_forces(m, formulation, forces);
-  // A small floor keeps every cylinder with an interior (METHOD.md).
-  const double floor = 1e-9 * formulation.force_scale;
-  std::vector<double> radii(normals.size());
-  for (std::size_t p = 0; p < radii.size(); ++p) radii[p] = std::max(floor, cylinder.points[p].friction * normals[p]);
-
-  // Steps are solved only as accurately as the scheme can use: a tenth of the last relative
-  // change of alpha, within [a tenth of the convergence tolerance, 1e-3]. The converged step
-  // is then re-solved at the requested tolerances.
-  auto step_tolerance = [&](double last_relative_change) {
-    const double tol = std::clamp(0.1 * last_relative_change, 0.1 * request.non_associative_tolerance, 1e-3);
-    return std::max(tol, request.tol_relative_gap);
-  };
-  double step_tol = step_tolerance(1.0);
-  double reported_step_tol = step_tol;  // tolerance of the step that will be reported
-  conic::Settings settings = solver_settings(request, options, time_left());
-  settings.tol_gap_rel = step_tol;
-  settings.tol_feas = std::max(request.tol_feasibility, 0.1 * step_tol);
-  conic::ConicProblem first = cylinder.problem;
-  first.b = cylinder.rhs_with_radii(radii);
-  const auto cylinder_start = Clock::now();
-  conic::ConicSolver cylinder_solver(std::move(first), settings);
-  if (options.progress) cylinder_solver.set_progress_callback(options.progress);
-  result.solve_seconds += seconds_since(cylinder_start);
-
-  std::vector<double> used_radii = radii;
-  double damping = request.non_associative_damping;
-  double previous_change = 0.0;
-  conic::Solution step;
-  bool have_step = false;
-  for (int iteration = 1; iteration <= request.non_associative_max_iterations; ++iteration) {
-    if (time_left() <= 0.0) {
-      result.verdict = Verdict::TimeLimit;
-      break;
-    }
-    cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
-    cylinder_solver.settings().tol_gap_rel = step_tol;
-    cylinder_solver.settings().tol_feas = std::max(request.tol_feasibility, 0.1 * step_tol);
-    reported_step_tol = step_tol;
-    const auto step_start = Clock::now();
-    conic::Solution next = cylinder_solver.solve();
-    result.solve_seconds += seconds_since(step_start);
-    if (!conic::has_solution(next.info.status)) {
-      result.warnings.push_back({"non_associative_step_failed",
-                                 "non-associative step " + std::to_string(iteration) + " ended with " +
-                                     conic::to_string(next.info.status) + "; the last completed step is reported",
-                                 ""});
-      if (next.info.status == conic::SolveStatus::TimeLimit) result.verdict = Verdict::TimeLimit;
-      if (next.info.status == conic::SolveStatus::Cancelled) result.verdict = Verdict::Cancelled;
-      break;
-    }
-    const double next_value = multiplier_value(cylinder, next.x);
-    const std::vector<double> next_normals = normal_forces(m, cylinder, cylinder.point_forces(next.x));
-    double change = 0.0;
-    for (std::size_t p = 0; p < next_normals.size(); ++p) change = std::max(change, std::abs(next_normals[p] - normals[p]));
-    result.non_associative.push_back({iteration, next_value, change, next.info.iterations});
-    const double previous = value;
-    step = std::move(next);
-    have_step = true;
-    used_radii = radii;
-    value = next_value;
-    normals = next_normals;
-    const double scale = formulation.settlement ? std::max(std::abs(value), 1e-12 * formulation.force_scale)
-                                                : std::max(std::abs(value), 1e-12);
-    // Converged when the change is below the tolerance and so is the distance to the limit
-    // that a linearly converging sequence implies (|d_k| rho / (1 - rho), rho = |d_k / d_k-1|):
-    // with strong damping the steps shrink slowly and a small step alone can stop far from
-    // the fixed point (a 1-degree slope stopped 5.5e-5 away with a 1e-6 tolerance).
-    const double step_change = std::abs(value - previous);
-    const double rho = std::abs(previous_change) > 0.0 ? step_change / std::abs(previous_change) : 0.0;
-    const double remaining = rho < 1.0 ? step_change * rho / (1.0 - rho) : step_change;
-    if (step_change <= request.non_associative_tolerance * scale &&
-        remaining <= request.non_associative_tolerance * scale) {
-      result.non_associative_converged = true;
-      break;
-    }
-    step_tol = step_tolerance(std::abs(value - previous) / scale);
-    // Near convergence, solve at the requested tolerances at once: a tight solve costs a few
-    // more interior-point iterations than a loose one (façade: 22-24 against 17-20), while a
-    // loose step that passes the test is solved again from the start (22 more). The radii and
-    // so the path of the scheme are unchanged.
-    if (step_change <= kTightStepFactor * request.non_associative_tolerance * scale) step_tol = request.tol_relative_gap;
-    // Adaptive damping: when alpha turns back (the iteration overshoots), halve the weight of
-    // the new radii, down to an eighth of the requested damping. A floor at one half left
-    // period-4 cycles (a 1:1000 column, a block 1e6 lighter than the one below it); the
-    // stopping test above accounts for the slower steps.
-    if (previous_change * (value - previous) < 0.0) damping = std::max(damping * 0.5, request.non_associative_damping / 8.0);
-    previous_change = value - previous;
-    const double d = damping;
-    for (std::size_t p = 0; p < radii.size(); ++p) {
-      radii[p] = std::max(floor, d * cylinder.points[p].friction * normals[p] + (1.0 - d) * radii[p]);
-    }
-    cylinder_solver.update_b(cylinder.rhs_with_radii(radii));
-    // Consecutive steps differ only in the radii: start the next one near this solution.
-    if (request.non_associative_warm_start) cylinder_solver.set_warm_start(step.x, step.y, step.z);
-  }
-  // The reported step is always solved at the requested tolerances, converged or not.
-  if (have_step && reported_step_tol > request.tol_relative_gap && time_left() > 0.0) {
-    cylinder_solver.settings().tol_gap_rel = request.tol_relative_gap;
-    cylinder_solver.settings().tol_feas = request.tol_feasibility;
-    cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
-    cylinder_solver.update_b(cylinder.rhs_with_radii(used_radii));
-    if (request.non_associative_warm_start) cylinder_solver.set_warm_start(step.x, step.y, step.z);
-    const auto final_start = Clock::now();
-    conic::Solution tight = cylinder_solver.solve();
-    result.solve_seconds += seconds_since(final_start);
-    if (conic::has_solution(tight.info.status)) {
-      step = std::move(tight);
-      value = multiplier_value(cylinder, step.x);
-    }
-  }
-  if (!result.non_associative_converged && have_step) {
-    result.warnings.push_back({"non_associative_not_converged",
-                               "the non-associative scheme did not converge in " +
-                                   std::to_string(request.non_associative_max_iterations) +
-                                   " steps; the last step is reported",
-                               "/analysis/non_associative/max_iterations"});
-  }
-  if (have_step) {
-    result.solver_info = step.info;
-    result.interior_point_history = step.info.history;
-    result.mechanism = Mechanism{};
-    result.mechanism_seconds = 0.0;
-    read_solution(m, cylinder, step, false, used_radii, result);
-  }
+  ShiftScheme scheme(m, formulation, solver, deadline, result);
+  scheme.run(associative, value);
 }
 
 }  // namespace rbla::analysis

@@ -93,7 +93,7 @@ std::vector<double> normal_forces(const model::Model& m, const Formulation& f, c
 }
 
 void read_solution(const model::Model& m, const Formulation& f, const conic::Solution& solution, bool associative,
-                   const std::vector<double>& radii, AnalysisResult& result) {
+                   AnalysisResult& result) {
   const auto start = Clock::now();
   const std::vector<Vec3> forces = f.point_forces(solution.x);
   result.mechanism.blocks = block_velocities(m, f, solution.y);
@@ -103,16 +103,18 @@ void read_solution(const model::Model& m, const Formulation& f, const conic::Sol
   fill_interfaces(m, corner_forces(m, f, forces), associative, result.mechanism);
 
   double dissipation = 0.0;
-  if (!radii.empty()) {
-    // Cylinder step: the fixed shear capacity r_k works against the slip (no dilatancy).
+  if (!associative) {
+    // Sliding without dilatancy: the friction force mu N works against the slip.
     for (std::size_t p = 0; p < f.points.size(); ++p) {
-      const auto& interface_result = result.mechanism.interfaces[f.points[p].interface_index];
+      const FormulationPoint& point = f.points[p];
+      const auto& interface_result = result.mechanism.interfaces[point.interface_index];
+      const double normal = std::max(0.0, forces[p].dot(m.interfaces[point.interface_index].normal));
       double slip = 0.0;
-      for (int k : f.points[p].corners) {
+      for (int k : point.corners) {
         const Vec3& dv = interface_result.points[k].relative_velocity;
-        slip += std::hypot(dv[1], dv[2]) / static_cast<double>(f.points[p].corners.size());
+        slip += std::hypot(dv[1], dv[2]) / static_cast<double>(point.corners.size());
       }
-      dissipation += radii[p] * slip;
+      dissipation += point.friction * normal * slip;
     }
   }
   double dead = 0.0, live = 0.0;

@@ -49,10 +49,11 @@ double multiplier_value(const Formulation& f, const Eigen::VectorXd& x);
 /// Normal force (kN, compression positive) at every formulation point.
 std::vector<double> normal_forces(const model::Model& m, const Formulation& f, const std::vector<Vec3>& forces);
 
-/// Fills the mechanism, work balance and accuracy of a solved problem. `radii` (kN, one per
-/// point) are the cylinder radii of a non-associative step, empty for an associative solve.
+/// Fills the mechanism, work balance and accuracy of a solved problem. Non-associative: sliding
+/// points dissipate mu N |slip| (associative sliding dissipates nothing: its dilatancy work
+/// cancels the friction work).
 void read_solution(const model::Model& m, const Formulation& f, const conic::Solution& solution, bool associative,
-                   const std::vector<double>& radii, AnalysisResult& result);
+                   AnalysisResult& result);
 
 /// Which blocks fall, from a primal infeasibility certificate y (b^T y > 0, -A^T y in K*): a
 /// kinematically admissible motion on which the dead loads do positive work.

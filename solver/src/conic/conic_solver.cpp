@@ -498,6 +498,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
   double last_step = 0, last_sigma = 0;
   int last_refine = 0;
   Metrics metrics;
+  Iterate snapshot;
   SolveStatus status = SolveStatus::NumericalFailure;
   Metrics best_metrics;
   double best_merit = std::numeric_limits<double>::infinity();
@@ -544,6 +545,8 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
     info.iterations = iter;
     if (log) print_row(*log, row);
 
+    if (s.snapshot_gap_rel > 0 && snapshot.empty() && metrics.gap_rel < s.snapshot_gap_rel)
+      snapshot = {metrics.x, metrics.y, metrics.z};
     if (metrics.meets(s.tol_feas, s.tol_gap_abs, s.tol_gap_rel)) {
       status = SolveStatus::Solved;
       break;
@@ -959,6 +962,7 @@ Solution ConicSolver::Impl::solve(bool allow_least_squares_start) {
     *log << line;
   }
   solution.info = std::move(info);
+  solution.snapshot = std::move(snapshot);
   return solution;
 }
 

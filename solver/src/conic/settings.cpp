@@ -47,6 +47,8 @@ std::vector<std::string> Settings::validate() const {
     messages.push_back("step_fraction must be in (0, 1)");
   if (!(warm_start_weight > 0 && warm_start_weight < 1))
     messages.push_back("warm_start_weight must be in (0, 1)");
+  if (!(snapshot_gap_rel >= 0) || !std::isfinite(snapshot_gap_rel))
+    messages.push_back("snapshot_gap_rel must be finite and >= 0");
   if (!(memory_limit_bytes >= 0) || !std::isfinite(memory_limit_bytes))
     messages.push_back("memory_limit_bytes must be finite and >= 0");
   if (blas_threads < 0 || blas_threads > 256) messages.push_back("blas_threads must be in [0, 256]");

@@ -208,10 +208,20 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
       steps.push_back({{"iteration", step.iteration + 1},
                        {"load_multiplier", non_negative(step.value / value_unit)},
                        {"max_normal_force_change", step.max_normal_force_change / f},
-                       {"interior_point_iterations", step.interior_point_iterations}});
+                       {"dilatancy", step.dilatancy},
+                       {"shift_change", step.shift_change},
+                       {"interior_point_iterations", step.interior_point_iterations},
+                       {"seconds", step.seconds}});
     }
     convergence["non_associative"] = steps;
     convergence["non_associative_converged"] = result.non_associative_converged;
+    if (!result.non_associative_stop.empty()) convergence["non_associative_stop"] = result.non_associative_stop;
+    convergence["non_associative_checks"] = result.non_associative_checks;
+    if (result.non_associative_checks > 0) convergence["non_associative_gap"] = result.non_associative_gap;
+    if (result.non_associative_range) {
+      convergence["non_associative_range"] = {{"low", non_negative(result.non_associative_range->first / value_unit)},
+                                              {"high", non_negative(result.non_associative_range->second / value_unit)}};
+    }
   }
   out["convergence"] = convergence;
 

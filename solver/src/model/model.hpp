@@ -95,14 +95,12 @@ struct AnalysisRequest {
   Formulation formulation = Formulation::Auto;
   double tol_relative_gap = 1e-8;
   double tol_feasibility = 1e-8;
+  // Non-associative scheme (analysis/non_associative.hpp): steps, the fixed-point test's relative
+  // tolerance, the damping of the shifts, and warm starts from the previous step's iterate.
   int non_associative_max_iterations = 30;
-  double non_associative_tolerance = 1e-4;
+  double non_associative_tolerance = 1e-3;
   double non_associative_damping = 0.5;
-  // Each step starts near the previous step's solution. Off by default: it saved few iterations
-  // on the façade (steps change the radii by tens of kN) and, because the normal forces are not
-  // unique, it changes which optimal forces a step returns (a cold start returns the analytic
-  // centre of the optimal face); two validation cases then stopped converging at 1e-7.
-  bool non_associative_warm_start = false;
+  bool non_associative_warm_start = true;
   // With a pyramid cone and associative friction: also solve the other pyramid (inscribed and
   // circumscribed bracket the exact cone) and report both.
   bool pyramid_bracket = false;

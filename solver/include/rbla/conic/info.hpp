@@ -83,12 +83,21 @@ struct Info {
   std::string brief_report() const;
 };
 
+/// An iterate in the original variables (x, y, z = iterate / τ).
+struct Iterate {
+  Eigen::VectorXd x, y, z;
+  bool empty() const { return x.size() == 0; }
+};
+
 /// Solution in the original variables. Which vectors hold what depends on status (see SolveStatus).
 struct Solution {
   Eigen::VectorXd x;  ///< primal, length n
   Eigen::VectorXd y;  ///< equality multipliers, length m
   Eigen::VectorXd z;  ///< dual slack c − Aᵀy, length n
   Info info;
+  /// The first iterate below Settings::snapshot_gap_rel (empty when that is 0 or never reached):
+  /// a warm start for ConicSolver::set_warm_start on a nearby problem.
+  Iterate snapshot;
 };
 
 }  // namespace rbla::conic

@@ -60,7 +60,13 @@ struct Settings {
   int max_centrality_correctors = 3;
   /// λ of ConicSolver::set_warm_start: the weight of the given point against the central start
   /// e, in (0, 1).
-  double warm_start_weight = 0.9;  ///< fraction of the step to the cone boundary (0, 1)
+  double warm_start_weight = 0.9;
+  /// When > 0, the first iterate whose relative gap falls below this is kept in
+  /// Solution::snapshot: a well-centred point from which a nearby problem (same A, b, slightly
+  /// different c or b) can be warm-started (Gondzio & Grothey 2008, "A new unblocking technique to
+  /// warmstart interior point methods based on sensitivity analysis", SIAM J. Optim. 19: an
+  /// iterate short of optimality warm-starts better than the optimum, which sits on the boundary).
+  double snapshot_gap_rel = 0.0;
   double step_min = 1e-8;       ///< a step shorter than this is a stall: the solve stops
   /// More than stall_max_iter consecutive steps shorter than stall_step also stop the solve
   /// (NumericalFailure, or SolvedInaccurate if the best iterate meets the reduced tolerances).
