@@ -103,14 +103,8 @@ struct Cell {
   std::size_t begin, end;
 };
 
-/// Vertices closer than `tol` are one vertex, and so are chains of them (single linkage), each
-/// mapped to the smallest index of its class. A sort into grid cells of side h = tol / 1.75 makes
-/// this O(n log n) where a sweep along one axis was quadratic when many vertices share a
-/// coordinate (a finely meshed face): a cell's diagonal, sqrt(3) h < tol, so a cell's vertices
-/// are one class without a test, and two vertices within tol lie at most ceil(1.75) = 2 cells
-/// apart along each axis, so each cell is compared with the 62 cells ahead of it in a 5x5x5 block
-/// (once a pair is joined, the two cells are one class and the comparison stops). When tol is
-/// below 2^-50 of the block's extent the cells are made coarser and tested pairwise.
+}  // namespace
+
 std::vector<int> merge_close_vertices(const std::vector<Vec3>& vertices, double tol) {
   const int n = static_cast<int>(vertices.size());
   VertexClasses classes(n);
@@ -165,6 +159,8 @@ std::vector<int> merge_close_vertices(const std::vector<Vec3>& vertices, double 
   for (int i = 0; i < n; ++i) canonical[i] = classes.find(i);
   return canonical;
 }
+
+namespace {
 
 using Edge = std::pair<int, int>;
 
