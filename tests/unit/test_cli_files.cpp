@@ -4,6 +4,7 @@
 // device node is made in a temporary folder; nothing under /dev is touched.
 #include "support/cli_runner.hpp"
 #include "support/model_builder.hpp"
+#include "support/temp_folder.hpp"
 
 #include <gtest/gtest.h>
 
@@ -29,17 +30,9 @@ namespace {
 
 constexpr std::uint64_t kOneGiB = 1ull << 30;
 
-class CliFiles : public ::testing::Test {
+class CliFiles : public TempFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rbla_files_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  CliFiles() : TempFolderTest("rbla_files") {}
   std::string write(const std::string& name, const std::string& text) const {
     std::ofstream(path(name), std::ios::binary) << text;
     return path(name);
@@ -72,8 +65,6 @@ class CliFiles : public ::testing::Test {
     if (::geteuid() != 0 || ::mknod(path(name).c_str(), S_IFCHR | 0666, makedev(1, 3)) != 0) return {};
     return path(name);
   }
-
-  fs::path dir_;
 };
 
 bool is_json_result(const std::string& text) {

@@ -2,6 +2,7 @@
 // when the writer fails or the process is interrupted in the middle of a write.
 #include "io/atomic_file.hpp"
 #include "io/file_error.hpp"
+#include "support/temp_folder.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,16 +21,9 @@ using rbla::io::OutputKind;
 
 namespace {
 
-class OutputFile : public ::testing::Test {
+class OutputFile : public rbla::testing::TempFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rbla_output_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  OutputFile() : TempFolderTest("rbla_output") {}
   static std::string read(const std::string& file) {
     std::ifstream in(file);
     std::stringstream text;
@@ -41,7 +35,6 @@ class OutputFile : public ::testing::Test {
     for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir_)) ++n;
     return n;
   }
-  fs::path dir_;
 };
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "io/printable.hpp"
 #include "model/errors.hpp"
 #include "support/model_builder.hpp"
+#include "support/model_issues.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,28 +26,6 @@ namespace {
 
 json two_boxes() {
   return model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"), box_block("B1", 0, 0, 0, 1, 1, 2)}));
-}
-
-std::vector<InputIssue> issues_of(const std::string& text, const InputLimits& limits = {}) {
-  try {
-    load_model_text(text, limits);
-  } catch (const ModelError& error) {
-    return error.issues();
-  }
-  return {};
-}
-
-std::string describe(const std::vector<InputIssue>& issues) {
-  std::string text;
-  for (const auto& issue : issues) text += "[" + issue.pointer + "] " + issue.message + "\n";
-  return text.empty() ? "(accepted)" : text;
-}
-
-bool has_issue(const std::vector<InputIssue>& issues, const std::string& pointer, const std::string& words) {
-  for (const auto& issue : issues) {
-    if (issue.pointer == pointer && issue.message.find(words) != std::string::npos) return true;
-  }
-  return false;
 }
 
 const json kSquare = json::array({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
@@ -94,33 +73,33 @@ TEST(ReaderLimits, DefaultsAcceptAModelAndEachLimitStopsAtItsPlace) {
   json m = two_boxes();
   m["interfaces"] = {interface_between("base", "B1", kSquare)};
   const std::string text = m.dump();
-  EXPECT_TRUE(issues_of(text).empty()) << describe(issues_of(text));
+  EXPECT_TRUE(model_issues(text).empty()) << describe_issues(model_issues(text));
 
   InputLimits blocks;
   blocks.max_blocks = 1;
-  EXPECT_TRUE(has_issue(issues_of(text, blocks), "/blocks/1", "--max-blocks")) << describe(issues_of(text, blocks));
+  EXPECT_TRUE(has_issue_at(model_issues(text, blocks), "/blocks/1", "--max-blocks")) << describe_issues(model_issues(text, blocks));
   InputLimits vertices;
   vertices.max_vertices = 15;
-  EXPECT_TRUE(has_issue(issues_of(text, vertices), "/blocks/1/vertices/7", "--max-vertices"));
+  EXPECT_TRUE(has_issue_at(model_issues(text, vertices), "/blocks/1/vertices/7", "--max-vertices"));
   InputLimits interfaces;
   interfaces.max_interfaces = 0;
-  EXPECT_TRUE(has_issue(issues_of(text, interfaces), "/interfaces/0", "--max-interfaces"));
+  EXPECT_TRUE(has_issue_at(model_issues(text, interfaces), "/interfaces/0", "--max-interfaces"));
   InputLimits depth;
   depth.max_depth = 5;  // a face, a vertex and a polygon's corner are 5 deep: the model needs 5
-  EXPECT_TRUE(issues_of(text, depth).empty()) << describe(issues_of(text, depth));
+  EXPECT_TRUE(model_issues(text, depth).empty()) << describe_issues(model_issues(text, depth));
   depth.max_depth = 4;
-  EXPECT_TRUE(has_issue(issues_of(text, depth), "/blocks/0/faces/0", "deeper than the limit of 4 levels"))
-      << describe(issues_of(text, depth));
+  EXPECT_TRUE(has_issue_at(model_issues(text, depth), "/blocks/0/faces/0", "deeper than the limit of 4 levels"))
+      << describe_issues(model_issues(text, depth));
   InputLimits bytes;
   bytes.max_bytes = text.size() - 1;
-  EXPECT_TRUE(has_issue(issues_of(text, bytes), "", "--max-input-bytes"));
+  EXPECT_TRUE(has_issue_at(model_issues(text, bytes), "", "--max-input-bytes"));
 }
 
 TEST(ReaderLimits, LongStringsAndNamesAreRefusedWithAShortQuote) {
   json m = two_boxes();
   m["title"] = std::string(20000, 't');
-  const auto issues = issues_of(m.dump());
-  ASSERT_EQ(issues.size(), 1u) << describe(issues);
+  const auto issues = model_issues(m.dump());
+  ASSERT_EQ(issues.size(), 1u) << describe_issues(issues);
   EXPECT_EQ(issues[0].pointer, "/title");
   EXPECT_NE(issues[0].message.find("a string of 20000 bytes"), std::string::npos) << issues[0].message;
   EXPECT_LT(issues[0].message.size(), 300u);
@@ -163,17 +142,17 @@ TEST(RepeatedInterfaces, RepeatsWithAnotherFrictionAreAmbiguous) {
   json second = interface_between("base", "B1", kSquare);
   second["friction"] = 0.3;
   m["interfaces"] = {interface_between("base", "B1", kSquare), second};
-  const auto issues = issues_of(m.dump());
-  EXPECT_TRUE(has_issue(issues, "/interfaces/1", "repeats /interfaces/0")) << describe(issues);
-  EXPECT_TRUE(has_issue(issues, "/interfaces/1", "0.3 against 0.6")) << describe(issues);
+  const auto issues = model_issues(m.dump());
+  EXPECT_TRUE(has_issue_at(issues, "/interfaces/1", "repeats /interfaces/0")) << describe_issues(issues);
+  EXPECT_TRUE(has_issue_at(issues, "/interfaces/1", "0.3 against 0.6")) << describe_issues(issues);
 }
 
 TEST(RepeatedInterfaces, LaterMessagesStillNameTheInterfaceInTheFile) {
   json m = two_boxes();
   m["interfaces"] = {interface_between("base", "B1", kSquare), interface_between("base", "B1", kSquare),
                      interface_between("base", "B1", {{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}})};  // zero area
-  const auto issues = issues_of(m.dump());
-  EXPECT_TRUE(has_issue(issues, "/interfaces/2/polygon", "zero area")) << describe(issues);
+  const auto issues = model_issues(m.dump());
+  EXPECT_TRUE(has_issue_at(issues, "/interfaces/2/polygon", "zero area")) << describe_issues(issues);
 }
 
 TEST(RepeatedInterfaces, TheCollapseMultiplierIsThatOfOneJoint) {
@@ -201,23 +180,23 @@ TEST(HonestMessages, IntegersWrittenWithAZeroFractionAreIntegers) {
   m["analysis"] = {{"seismic", {{"direction", {1, 0, 0}}}}, {"cone", "pyramid_inscribed"}, {"pyramid_faces", 8.0}};
   const std::string text = m.dump();
   ASSERT_NE(text.find("[4.0,5.0,6.0,7.0]"), std::string::npos) << text;
-  EXPECT_TRUE(issues_of(text).empty()) << describe(issues_of(text));
+  EXPECT_TRUE(model_issues(text).empty()) << describe_issues(model_issues(text));
   EXPECT_EQ(load_model_text(text).model.analysis.pyramid_faces, 8);
 }
 
 TEST(HonestMessages, AFractionalIndexSaysWhatWasExpectedAndFound) {
   json m = two_boxes();
   m["blocks"][1]["faces"][1][3] = 7.5;
-  const auto issues = issues_of(m.dump());
-  EXPECT_TRUE(has_issue(issues, "/blocks/1/faces/1/3", "expected an integer, found the number 7.5")) << describe(issues);
+  const auto issues = model_issues(m.dump());
+  EXPECT_TRUE(has_issue_at(issues, "/blocks/1/faces/1/3", "expected an integer, found the number 7.5")) << describe_issues(issues);
 }
 
 TEST(HonestMessages, AnIndexOfTwoToTheSixtyFourIsNotCalledNegative) {
   json m = two_boxes();
   m["blocks"][1]["faces"][1][3] = 18446744073709551615ull;
-  const auto issues = issues_of(m.dump());
-  EXPECT_TRUE(has_issue(issues, "/blocks/1/faces/1/3", "expected an integer, found the number 1.8446744073709552e+19"))
-      << describe(issues);
+  const auto issues = model_issues(m.dump());
+  EXPECT_TRUE(has_issue_at(issues, "/blocks/1/faces/1/3", "expected an integer, found the number 1.8446744073709552e+19"))
+      << describe_issues(issues);
   for (const auto& issue : issues) EXPECT_EQ(issue.message.find("greater than or equal to 0"), std::string::npos);
 }
 
@@ -225,29 +204,29 @@ TEST(HonestMessages, ATinyDirectionIsADirection) {
   for (const double tiny : {1e-170, 5e-324}) {
     json m = two_boxes();
     m["analysis"] = {{"seismic", {{"direction", {tiny, 0, 0}}}}};
-    const auto issues = issues_of(m.dump());
-    ASSERT_TRUE(issues.empty()) << tiny << ": " << describe(issues);
+    const auto issues = model_issues(m.dump());
+    ASSERT_TRUE(issues.empty()) << tiny << ": " << describe_issues(issues);
     EXPECT_EQ(*load_model_text(m.dump()).model.analysis.seismic_direction, rbla::model::Vec3::UnitX());
   }
   json m = two_boxes();
   m["analysis"] = {{"seismic", {{"direction", {0, 0, 0}}}}};
-  const auto issues = issues_of(m.dump());
-  ASSERT_EQ(issues.size(), 1u) << describe(issues);  // not also "needs a seismic direction"
-  EXPECT_TRUE(has_issue(issues, "/analysis/seismic/direction", "all three components are 0"));
+  const auto issues = model_issues(m.dump());
+  ASSERT_EQ(issues.size(), 1u) << describe_issues(issues);  // not also "needs a seismic direction"
+  EXPECT_TRUE(has_issue_at(issues, "/analysis/seismic/direction", "all three components are 0"));
 }
 
 TEST(HonestMessages, AnUnknownPropertyIsNamedAtItsPlace) {
   json m = two_boxes();
   m["colour"] = "red";
-  const auto issues = issues_of(m.dump());
-  EXPECT_TRUE(has_issue(issues, "/colour", "unknown property")) << describe(issues);
-  for (const auto& issue : issues) EXPECT_FALSE(issue.pointer.empty()) << describe(issues);
+  const auto issues = model_issues(m.dump());
+  EXPECT_TRUE(has_issue_at(issues, "/colour", "unknown property")) << describe_issues(issues);
+  for (const auto& issue : issues) EXPECT_FALSE(issue.pointer.empty()) << describe_issues(issues);
 }
 
 TEST(HonestMessages, UserTextInMessagesIsEscaped) {
   json m = two_boxes();
   m["blocks"][1]["id"] = "B\x1b[2J";
   m["blocks"][0]["id"] = "B\x1b[2J";
-  const auto issues = issues_of(m.dump());
-  EXPECT_TRUE(has_issue(issues, "/blocks/1/id", "duplicate block id 'B\\u001B[2J'")) << describe(issues);
+  const auto issues = model_issues(m.dump());
+  EXPECT_TRUE(has_issue_at(issues, "/blocks/1/id", "duplicate block id 'B\\u001B[2J'")) << describe_issues(issues);
 }
