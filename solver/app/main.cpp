@@ -20,6 +20,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -57,11 +58,6 @@ std::filesystem::path svg_file(const CommonOptions& options, const char* name) {
   return std::filesystem::path(options.svg_dir) / name;
 }
 
-/// Outputs that go to standard output move what would be printed there (the verdict) to
-/// standard error, so that `-o -` gives a clean JSON stream.
-bool stdout_taken(const CommonOptions& options) {
-  return options.output_path == "-" || options.dump_problem_path == "-";
-}
 
 void progress(const CommonOptions& options, const std::string& line) {
   if (!options.quiet) std::cerr << "rbla: " << shown(line) << "\n";
@@ -138,8 +134,10 @@ int write_output(const std::string& path, const std::string& text) {
 }
 
 /// Before any work: every output must be writable by the rules of io/atomic_file.hpp, none may be
-/// the model, and no two may be one file. Throws io::FileError.
-void check_paths(const CommonOptions& options) {
+/// the model, and no two may be one file. Throws io::FileError. Returns true when an output goes to
+/// standard output: what would be printed there (the verdict) then goes to standard error, so
+/// that `-o -` gives a clean JSON stream.
+bool check_paths(const CommonOptions& options) {
   std::vector<rbla::io::OutputTarget> outputs;
   if (!options.output_path.empty()) outputs.push_back(rbla::io::resolve_output(options.output_path));
   if (!options.dump_problem_path.empty()) outputs.push_back(rbla::io::resolve_output(options.dump_problem_path));
@@ -149,18 +147,19 @@ void check_paths(const CommonOptions& options) {
     }
   }
   rbla::io::check_outputs(options.model_path, outputs);
+  return std::any_of(outputs.begin(), outputs.end(), rbla::io::goes_to_standard_output);
 }
 
 int run_info(const CommonOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  check_paths(options);
+  const bool stdout_taken = check_paths(options);
   rbla::io::LoadedModel loaded;
   int exit_code = kSuccess;
   if (!load(options, loaded, exit_code)) return exit_code;
   const rbla::model::Model& m = loaded.model;
   const nlohmann::json summary = rbla::io::model_summary_json(m);
   const auto& box = summary["bounding_box"];
-  std::ostream& out = options.output_path == "-" ? std::cerr : std::cout;
+  std::ostream& out = stdout_taken ? std::cerr : std::cout;
   out << "title:           " << (m.title.empty() ? "(none)" : shown(m.title)) << "\n"
       << "units:           length " << m.units.length_name << ", force " << m.units.force_name << ", unit weight "
       << m.units.unit_weight_name << ", gravity " << m.gravity_axis << "\n"
@@ -191,7 +190,7 @@ int run_info(const CommonOptions& options) {
 
 int run_solve(const CommonOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  check_paths(options);
+  const bool stdout_taken = check_paths(options);
   rbla::io::LoadedModel loaded;
   int exit_code = kSuccess;
   if (!load(options, loaded, exit_code)) return exit_code;
@@ -226,7 +225,7 @@ int run_solve(const CommonOptions& options) {
                              ? std::string()
                              : ", " + std::to_string(result.non_associative.size()) + " non-associative steps") +
                         "; assembly " + seconds_text(result.assemble_seconds) + ")");
-  (stdout_taken(options) ? std::cerr : std::cout) << shown(result.verdict_text) << "\n";
+  (stdout_taken ? std::cerr : std::cout) << shown(result.verdict_text) << "\n";
 
   rbla::io::StageTimings timings = loaded.timings;
   const auto write_start = std::chrono::steady_clock::now();

@@ -73,6 +73,16 @@ const char* kind_of(mode_t mode) {
 
 /// Follows symbolic links from `out.path` to what is at the end: fills kind, target, identity.
 void follow_links(OutputTarget& out) {
+  // What the path leads to as the system follows it: a pipe or terminal behind /proc/self/fd/1,
+  // /dev/stdout or a shell's >(command) is a link whose text ("pipe:[123]") names no file.
+  struct stat end {};
+  if (::stat(out.path.c_str(), &end) == 0 && !S_ISREG(end.st_mode)) {
+    out.target = out.path;
+    out.identity = FileIdentity{end.st_dev, end.st_ino};
+    if (S_ISFIFO(end.st_mode) || S_ISCHR(end.st_mode)) out.kind = OutputKind::Stream;
+    else refuse(out, kind_of(end.st_mode));
+    return;
+  }
   std::string current = out.path;
   for (int hops = 0;; ++hops) {
     out.target = current;
@@ -283,6 +293,12 @@ void make_folder(const std::string& folder) {
   std::error_code error;
   std::filesystem::create_directories(folder, error);
   if (error) throw FileError(folder, "cannot create the folder " + quoted_path(folder) + ": " + error.message());
+}
+
+bool goes_to_standard_output(const OutputTarget& out) {
+  if (out.kind == OutputKind::StandardOutput) return true;
+  struct stat info {};
+  return out.identity && ::fstat(STDOUT_FILENO, &info) == 0 && *out.identity == FileIdentity{info.st_dev, info.st_ino};
 }
 
 void write_output(const std::string& path, const std::function<void(std::ostream&)>& write) {

@@ -47,6 +47,10 @@ std::vector<OutputTarget> resolve_outputs_in_folder(const std::string& folder, c
 /// Creates `folder` and its missing parents. Throws io::FileError naming it when it cannot.
 void make_folder(const std::string& folder);
 
+/// True when `out` is standard output: "-", or the file, pipe or terminal that standard output
+/// is (/proc/self/fd/1, /dev/stdout, or a path naming the file it was redirected to).
+bool goes_to_standard_output(const OutputTarget& out);
+
 /// Writes what `write` puts into the stream to `path` by the rules above. Throws io::FileError
 /// naming the path on failure (and passes on what `write` throws), after removing the temporary
 /// file; the target is then untouched (a stream may have received part of the output).
