@@ -107,19 +107,23 @@ TEST(ReaderLimits, LongStringsAndNamesAreRefusedWithAShortQuote) {
 
 // ---- Repeated interfaces --------------------------------------------------------------------------
 
-TEST(RepeatedInterfaces, AHundredThousandCopiesAreKeptOnceWithOneWarning) {
-  json m = two_boxes();
-  json list = json::array();
-  for (int i = 0; i < 100000; ++i) list.push_back(interface_between("base", "B1", kSquare));
-  m["interfaces"] = list;
-  const auto loaded = load_model_text(m.dump());
+TEST(RepeatedInterfaces, TwentyThousandCopiesAreKeptOnceWithOneWarning) {
+  // Written as text: building the JSON objects in the test would cost more than reading them.
+  // (The issue's 10^5 and 10^6 copies are measured in the commit messages; this is the same path.)
+  std::string text = two_boxes().dump();
+  text.pop_back();
+  text += R"(,"interfaces":[)";
+  const std::string one = interface_between("base", "B1", kSquare).dump();
+  for (int i = 0; i < 20000; ++i) text += (i ? "," : "") + one;
+  text += "]}";
+  const auto loaded = load_model_text(text);
   ASSERT_EQ(loaded.model.interfaces.size(), 1u);
   EXPECT_EQ(loaded.model.interfaces[0].id, "I0");
   ASSERT_EQ(loaded.model.warnings.size(), 1u);
   const auto& warning = loaded.model.warnings[0];
   EXPECT_EQ(warning.code, "repeated_interfaces");
   EXPECT_EQ(warning.pointer, "/interfaces/1");
-  EXPECT_NE(warning.message.find("99999 interfaces repeat an earlier one"), std::string::npos) << warning.message;
+  EXPECT_NE(warning.message.find("19999 interfaces repeat an earlier one"), std::string::npos) << warning.message;
 }
 
 TEST(RepeatedInterfaces, SameJointFromAnyCornerEitherWayOrBlockOrderIsARepeat) {
