@@ -322,11 +322,13 @@ CanonicalPolygon canonical(const std::vector<Vec3>& polygon) {
 }
 
 /// Interfaces given more than once: the same two blocks (either order) and the same polygon (the
-/// same corners in the same cyclic order, from any corner, either way round). Each repeat would
-/// add contact points where there already are some (the same forces, only more unknowns: 10^5
-/// copies make 4 * 10^5 contact points for one joint), so each joint is kept once and one
-/// warning says how many repeats were dropped. Repeats that disagree on friction are ambiguous
-/// and refused. Sorting by a canonical reading, O(n log n) in the interfaces.
+/// same corners in the same cyclic order, from any corner, either way round). A repeat adds
+/// contact points where there already are some; the friction cones of coincident points add up
+/// to the same cone, so the forces the joint admits do not change, only the unknowns multiply
+/// (10^5 copies of a square joint: 4 * 10^5 contact points). Each joint is kept once and one
+/// warning says how many repeats were dropped; repeats that disagree on friction are ambiguous
+/// and refused. Sorting by a canonical reading, O(n log n) in the interfaces. A polygon with more
+/// than 8 copies of its lowest corner may keep its repeats (harmless: as before).
 void drop_repeated_interfaces(model::Model& m, IssueList& issues) {
   const auto& list = m.interfaces;
   std::vector<CanonicalPolygon> forms(list.size());
