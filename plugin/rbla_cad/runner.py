@@ -96,7 +96,7 @@ class SolverFailureError(RblaError):
 
 
 class OutputError(RblaError):
-    """Exit 4: the solver could not write its output."""
+    """Exit 4: the solver could not read or write a file (its message names the path)."""
 
 
 class SolverTimeoutError(RblaError):
@@ -270,7 +270,7 @@ class Runner(object):
             what = result.verdict if result is not None else tail
             raise SolverFailureError("solver failure (exit 3): %s" % what, code, stderr, result)
         if code == 4:
-            raise OutputError("the solver could not write its output (exit 4): %s" % tail,
+            raise OutputError("the solver could not read or write a file (exit 4): %s" % tail,
                               code, stderr)
         raise RblaError("rbla stopped with exit code %s: %s" % (code, tail), code, stderr)
 

@@ -3,13 +3,17 @@
 // Exit codes (also in README.md):
 //   0  success (the verdict may be "cannot stand" or "no mechanism": those are answers)
 //   1  usage error (unknown command or option)
-//   2  invalid input (the message names the JSON pointer and what was expected)
+//   2  invalid input (the message names the JSON pointer and what was expected), limits included
 //   3  solver failure (numerical failure, time or iteration limit)
-//   4  the output could not be written
+//   4  a file could not be read or written (the message names the path)
 #include "analysis/limit_analysis.hpp"
 #include "io/atomic_file.hpp"
+#include "io/file_error.hpp"
+#include "io/input_limits.hpp"
 #include "io/load_model.hpp"
 #include "io/model_reader.hpp"
+#include "io/printable.hpp"
+#include "io/problem_file.hpp"
 #include "io/result_writer.hpp"
 #include "io/svg_writer.hpp"
 #include "io/warning_summary.hpp"
@@ -17,9 +21,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
-#include <filesystem>
+#include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 
@@ -30,8 +36,12 @@ enum ExitCode : int {
   kUsage = 1,
   kInvalidInput = 2,
   kSolverFailure = 3,
-  kOutputError = 4,
+  kFileError = 4,
 };
+
+/// A whole message as printed: user text inside is escaped (io/printable.hpp) and very long
+/// messages are cut.
+std::string shown(const std::string& text) { return rbla::io::printable(text, 4000); }
 
 struct CommonOptions {
   std::string model_path;
@@ -41,10 +51,17 @@ struct CommonOptions {
   bool quiet = false;
   bool verbose = false;
   int threads = 2;
+  rbla::io::InputLimits limits;
 };
 
+/// The folder --svg writes into and the two files in it.
+std::filesystem::path svg_file(const CommonOptions& options, const char* name) {
+  return std::filesystem::path(options.svg_dir) / name;
+}
+
+
 void progress(const CommonOptions& options, const std::string& line) {
-  if (!options.quiet) std::cerr << "rbla: " << line << "\n";
+  if (!options.quiet) std::cerr << "rbla: " << shown(line) << "\n";
 }
 
 std::string seconds_text(double seconds) {
@@ -58,25 +75,34 @@ std::string seconds_text(double seconds) {
 void report_warnings(const std::vector<rbla::model::Warning>& warnings, const CommonOptions& options) {
   if (options.quiet) return;
   for (const std::string& line : rbla::io::warning_lines(warnings, options.verbose)) {
-    std::cerr << "rbla: warning " << line << "\n";
+    std::cerr << "rbla: warning " << shown(line) << "\n";
   }
 }
 
 int report_invalid(const rbla::model::ModelError& error) {
   std::cerr << "rbla: invalid input:\n";
   for (const auto& issue : error.issues()) {
-    std::cerr << "  " << (issue.pointer.empty() ? "(document)" : issue.pointer) << ": " << issue.message << "\n";
+    std::cerr << "  " << (issue.pointer.empty() ? "(document)" : rbla::io::printable(issue.pointer, 300)) << ": "
+              << shown(issue.message) << "\n";
   }
   return kInvalidInput;
+}
+
+int report_file_error(const rbla::io::FileError& error) {
+  std::cerr << "rbla: " << shown(error.what()) << "\n";
+  return kFileError;
 }
 
 /// Loads the model with progress lines; returns false (after reporting) on invalid input.
 bool load(const CommonOptions& options, rbla::io::LoadedModel& loaded, int& exit_code) {
   progress(options, "reading " + (options.model_path == "-" ? std::string("standard input") : options.model_path));
   try {
-    loaded = rbla::io::load_model_file(options.model_path);
+    loaded = rbla::io::load_model_file(options.model_path, options.limits);
   } catch (const rbla::model::ModelError& error) {
     exit_code = report_invalid(error);
+    return false;
+  } catch (const rbla::io::FileError& error) {
+    exit_code = report_file_error(error);
     return false;
   }
   const auto& m = loaded.model;
@@ -102,23 +128,40 @@ int run_validate(const CommonOptions& options) {
 int write_output(const std::string& path, const std::string& text) {
   try {
     rbla::io::write_file_atomically(path, text);
-  } catch (const std::exception& error) {
-    std::cerr << "rbla: " << error.what() << "\n";
-    return kOutputError;
+  } catch (const rbla::io::FileError& error) {
+    return report_file_error(error);
   }
   return kSuccess;
 }
 
+/// Before any work: every output must be writable by the rules of io/atomic_file.hpp, none may be
+/// the model, and no two may be one file. Throws io::FileError. Returns true when an output goes to
+/// standard output: what would be printed there (the verdict) then goes to standard error, so
+/// that `-o -` gives a clean JSON stream.
+bool check_paths(const CommonOptions& options) {
+  std::vector<rbla::io::OutputTarget> outputs;
+  if (!options.output_path.empty()) outputs.push_back(rbla::io::resolve_output(options.output_path));
+  if (!options.dump_problem_path.empty()) outputs.push_back(rbla::io::resolve_output(options.dump_problem_path));
+  if (!options.svg_dir.empty()) {
+    for (auto& target : rbla::io::resolve_outputs_in_folder(options.svg_dir, {"mechanism.svg", "convergence.svg"})) {
+      outputs.push_back(std::move(target));
+    }
+  }
+  rbla::io::check_outputs(options.model_path, outputs);
+  return std::any_of(outputs.begin(), outputs.end(), rbla::io::goes_to_standard_output);
+}
+
 int run_info(const CommonOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  const bool stdout_taken = check_paths(options);
   rbla::io::LoadedModel loaded;
   int exit_code = kSuccess;
   if (!load(options, loaded, exit_code)) return exit_code;
   const rbla::model::Model& m = loaded.model;
   const nlohmann::json summary = rbla::io::model_summary_json(m);
   const auto& box = summary["bounding_box"];
-  std::ostream& out = options.output_path == "-" ? std::cerr : std::cout;
-  out << "title:           " << (m.title.empty() ? "(none)" : m.title) << "\n"
+  std::ostream& out = stdout_taken ? std::cerr : std::cout;
+  out << "title:           " << (m.title.empty() ? "(none)" : shown(m.title)) << "\n"
       << "units:           length " << m.units.length_name << ", force " << m.units.force_name << ", unit weight "
       << m.units.unit_weight_name << ", gravity " << m.gravity_axis << "\n"
       << "blocks:          " << summary["num_blocks"] << " (free " << summary["num_free_blocks"] << ", fixed "
@@ -148,6 +191,7 @@ int run_info(const CommonOptions& options) {
 
 int run_solve(const CommonOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  const bool stdout_taken = check_paths(options);
   rbla::io::LoadedModel loaded;
   int exit_code = kSuccess;
   if (!load(options, loaded, exit_code)) return exit_code;
@@ -155,7 +199,11 @@ int run_solve(const CommonOptions& options) {
 
   rbla::analysis::AnalysisOptions analysis_options;
   analysis_options.log = options.verbose ? &std::cerr : nullptr;
-  analysis_options.dump_problem_path = options.dump_problem_path;
+  if (!options.dump_problem_path.empty()) {
+    analysis_options.problem_ready = [&](const rbla::conic::ConicProblem& problem) {
+      rbla::io::write_problem_file(options.dump_problem_path, problem);
+    };
+  }
   analysis_options.threads = options.threads;
   progress(options, std::string("analysis: ") + rbla::model::to_string(m.analysis.type) + ", " +
                         rbla::model::to_string(m.analysis.friction_model) + " friction, cone " +
@@ -180,19 +228,19 @@ int run_solve(const CommonOptions& options) {
   } else {
     progress(options, "no solve ran (assembly " + seconds_text(result.assemble_seconds) + ")");
   }
-  std::cout << result.verdict_text << "\n";
+  (stdout_taken ? std::cerr : std::cout) << shown(result.verdict_text) << "\n";
 
   rbla::io::StageTimings timings = loaded.timings;
   const auto write_start = std::chrono::steady_clock::now();
   if (!options.svg_dir.empty()) {
-    std::error_code error;
-    std::filesystem::create_directories(options.svg_dir, error);
-    const std::filesystem::path dir(options.svg_dir);
-    const int svg_code = write_output((dir / "mechanism.svg").string(), rbla::io::mechanism_svg(m, result));
+    rbla::io::make_folder(options.svg_dir);
+    const std::string mechanism = svg_file(options, "mechanism.svg").string();
+    const std::string convergence = svg_file(options, "convergence.svg").string();
+    const int svg_code = write_output(mechanism, rbla::io::mechanism_svg(m, result));
     if (svg_code != kSuccess) return svg_code;
-    const int plot_code = write_output((dir / "convergence.svg").string(), rbla::io::convergence_svg(result));
+    const int plot_code = write_output(convergence, rbla::io::convergence_svg(result));
     if (plot_code != kSuccess) return plot_code;
-    progress(options, "wrote " + (dir / "mechanism.svg").string() + " and " + (dir / "convergence.svg").string());
+    progress(options, "wrote " + mechanism + " and " + convergence);
   }
   if (!options.output_path.empty()) {
     timings.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
@@ -214,9 +262,26 @@ int run_solve(const CommonOptions& options) {
   return kSolverFailure;
 }
 
+/// --max-input-bytes, --max-depth, ... (io/input_limits.hpp): how much input a command accepts.
+void add_input_limits(CLI::App* command, rbla::io::InputLimits& limits) {
+  for (const rbla::io::InputLimitInfo& info : rbla::io::kInputLimits) {
+    std::uint64_t& value = limits.*info.field;
+    CLI::Option* option = command->add_option(info.option, value, std::string("Refuse a model with more ") +
+                                                                      info.counts + " than this")
+                              ->default_val(value)
+                              ->group("Input limits");
+    if (info.field == &rbla::io::InputLimits::max_bytes) option->transform(CLI::AsSizeValue(false));
+    option->check(CLI::Range(std::uint64_t{1}, info.ceiling));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A reader that goes away (`rbla solve m.json -o - | head`) is a write error with a message,
+  // not a silent death by SIGPIPE; an interrupted write leaves no temporary file behind.
+  std::signal(SIGPIPE, SIG_IGN);
+  rbla::io::remove_temporary_files_on_signals();
   CLI::App app{"rbla: rigid block limit analysis of masonry structures"};
   app.set_version_flag("--version", std::string("rbla ") + RBLA_VERSION);
   app.require_subcommand(1);
@@ -234,11 +299,13 @@ int main(int argc, char** argv) {
   solve->add_option("--threads", options.threads,
                     "Threads per conic solve: 2 (default) splits large problems over two cores, 1 keeps to one")
       ->check(CLI::Range(1, 2));
+  add_input_limits(solve, options.limits);
 
   CLI::App* validate = app.add_subcommand("validate", "Check a model against the schema and its geometry");
   validate->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
   validate->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
   validate->add_flag("-v,--verbose", options.verbose, "Every warning on its own line (default: one line per kind)");
+  add_input_limits(validate, options.limits);
 
   CLI::App* info = app.add_subcommand("info", "Summarise a model: blocks, interfaces, contact points, warnings");
   info->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
@@ -246,6 +313,7 @@ int main(int argc, char** argv) {
                    "Also write the summary as a result JSON with status model_only ('-' for standard output)");
   info->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
   info->add_flag("-v,--verbose", options.verbose, "Every warning on its own line (default: one line per kind)");
+  add_input_limits(info, options.limits);
 
   try {
     app.parse(argc, argv);
@@ -264,13 +332,14 @@ int main(int argc, char** argv) {
     if (*info) return run_info(options);
   } catch (const rbla::model::ModelError& error) {
     return report_invalid(error);
+  } catch (const rbla::io::FileError& error) {
+    return report_file_error(error);
   } catch (const std::bad_alloc&) {
     std::cerr << "rbla: out of memory\n";
     return kSolverFailure;
   } catch (const std::exception& error) {
-    // Anything else (e.g. a problem dump that cannot be written) ends the run with its reason,
-    // never with an abort.
-    std::cerr << "rbla: " << error.what() << "\n";
+    // Anything else ends the run with its reason, never with an abort.
+    std::cerr << "rbla: " << shown(error.what()) << "\n";
     return kSolverFailure;
   }
   return kUsage;

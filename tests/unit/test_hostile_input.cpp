@@ -8,6 +8,7 @@
 // faces and interface polygons, zero-area faces with distinct collinear corners, collinear and
 // non-planar interface polygons, one face flipped, all vertices coincident, empty documents and
 // models, every truncation of a model, trailing garbage, invalid UTF-8, and deep nesting.
+#include "io/input_limits.hpp"
 #include "io/load_model.hpp"
 #include "model/errors.hpp"
 #include "support/model_builder.hpp"
@@ -66,10 +67,10 @@ std::vector<Hostile> hostile_cases() {
   // B1's far top corner (dump() writes no spaces; it is the first [1,1,2] in the text).
   const std::string b1_vertex = "[1.0,1.0,2.0]";
 
-  out.push_back({"nan_literal", replaced(good, b1_vertex, "[1.0,NaN,2.0]"), "", "malformed JSON"});
-  out.push_back({"infinity_literal", replaced(good, b1_vertex, "[1.0,Infinity,2.0]"), "", "malformed JSON"});
-  out.push_back({"overflowing_number", replaced(good, b1_vertex, "[1.0,1e400,2.0]"), "", "malformed JSON"});
-  out.push_back({"negative_overflowing_number", replaced(good, b1_vertex, "[1.0,-1e400,2.0]"), "", "malformed JSON"});
+  out.push_back({"nan_literal", replaced(good, b1_vertex, "[1.0,NaN,2.0]"), "/blocks/1/vertices/6/1", "malformed JSON"});
+  out.push_back({"infinity_literal", replaced(good, b1_vertex, "[1.0,Infinity,2.0]"), "/blocks/1/vertices/6/1", "malformed JSON"});
+  out.push_back({"overflowing_number", replaced(good, b1_vertex, "[1.0,1e400,2.0]"), "/blocks/1/vertices/6/1", "malformed JSON"});
+  out.push_back({"negative_overflowing_number", replaced(good, b1_vertex, "[1.0,-1e400,2.0]"), "/blocks/1/vertices/6/1", "malformed JSON"});
   out.push_back({"trailing_garbage", good + " x", "", "malformed JSON"});
   out.push_back({"two_documents", good + good, "", "malformed JSON"});
   out.push_back({"comment", "// exported by CAD\n" + good, "", "malformed JSON"});
@@ -77,7 +78,7 @@ std::vector<Hostile> hostile_cases() {
   {
     std::string bad = good;
     bad.replace(bad.find("\"B1\""), 4, "\"B\xff" "1\"");
-    out.push_back({"invalid_utf8_in_id", bad, "", "UTF-8"});
+    out.push_back({"invalid_utf8_in_id", bad, "/blocks/1/id", "UTF-8"});
   }
   out.push_back({"null_document", "null", "", ""});
   out.push_back({"string_document", "\"model\"", "", ""});
@@ -213,17 +214,25 @@ std::vector<Hostile> hostile_cases() {
     out.push_back({"no_blocks", m.dump(), "/blocks", ""});
   }
 
-  // Deep nesting: must be refused without exhausting the stack.
+  // Deep nesting: refused while reading, at the first level beyond the limit (64 by default), its
+  // pointer 64 steps deep, without exhausting the stack or building the rest.
+  const auto repeated = [](const std::string& token, std::size_t n) {
+    std::string text;
+    for (std::size_t i = 0; i < n; ++i) text += token;
+    return text;
+  };
+  const std::size_t depth = rbla::io::InputLimits{}.max_depth;
   const std::string head = R"({"schema_version":"1.0.0","units":{"length":"m"},"blocks":)";
-  out.push_back({"deep_array_in_blocks", head + std::string(100000, '[') + std::string(100000, ']') + "}", "/blocks/0", ""});
+  out.push_back({"deep_array_in_blocks", head + std::string(100000, '[') + std::string(100000, ']') + "}",
+                 "/blocks" + repeated("/0", depth - 1), "deeper than the limit of 64 levels"});
   {
     std::string deep = R"({"title":)";
     for (int i = 0; i < 100000; ++i) deep += R"({"a":)";
     deep += "1" + std::string(100000, '}');
     deep += R"(,"schema_version":"1.0.0","units":{"length":"m"},"blocks":[]})";
-    out.push_back({"deep_object_in_title", deep, "/title", ""});
+    out.push_back({"deep_object_in_title", deep, "/title" + repeated("/a", depth - 1), "--max-depth"});
   }
-  out.push_back({"a_million_unclosed_brackets", std::string(1000000, '['), "", "malformed JSON"});
+  out.push_back({"a_million_unclosed_brackets", std::string(1000000, '['), repeated("/0", depth), "deeper than"});
   return out;
 }
 

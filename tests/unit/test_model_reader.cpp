@@ -76,12 +76,18 @@ TEST(ModelReader, MillimetresAndNewtonsAreConverted) {
 TEST(ModelReaderErrors, MalformedJson) {
   const auto issues = issues_of(std::string("{\"schema_version\": \"1.0.0\", \"units\": "));
   ASSERT_EQ(issues.size(), 1u);
-  EXPECT_TRUE(has_issue(issues, "", "malformed JSON")) << describe(issues);
+  // The pointer says where the parser was: the value of "units" never came.
+  EXPECT_TRUE(has_issue(issues, "/units", "malformed JSON")) << describe(issues);
+  EXPECT_TRUE(has_issue(issues, "/units", "line 1, column 38")) << describe(issues);
 }
 
 TEST(ModelReaderErrors, TruncatedFile) {
   const std::string text = two_stacked_boxes().dump();
-  EXPECT_TRUE(has_issue(issues_of(text.substr(0, text.size() / 2)), "", "malformed JSON"));
+  const auto issues = issues_of(text.substr(0, text.size() / 2));
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_NE(issues[0].message.find("malformed JSON"), std::string::npos) << describe(issues);
+  EXPECT_NE(issues[0].message.find("unexpected end of input"), std::string::npos) << describe(issues);
+  EXPECT_EQ(issues[0].pointer.rfind("/blocks/", 0), 0u) << describe(issues);  // cut inside the blocks
 }
 
 TEST(ModelReaderErrors, EmptyDocumentAndWrongTopLevelType) {
@@ -212,7 +218,8 @@ TEST(ModelReaderErrors, UnknownProperty) {
   json model = two_stacked_boxes();
   model["blocks"][1]["colour"] = "red";
   const auto issues = issues_of(model);
-  EXPECT_TRUE(has_issue(issues, "/blocks/1")) << describe(issues);
+  // At the property itself, named (valijson reports it at the object, naming it only in words).
+  EXPECT_TRUE(has_issue(issues, "/blocks/1/colour", "unknown property")) << describe(issues);
 }
 
 TEST(ModelReaderWarnings, CadVolumeAndCentroidDisagreement) {

@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
+#include <random>
 
 using rbla::geometry::check_closure;
 using rbla::geometry::face_geometry;
 using rbla::geometry::FaceList;
 using rbla::geometry::mass_properties;
+using rbla::geometry::merge_close_vertices;
 using rbla::geometry::Vec3;
 
 namespace {
@@ -145,4 +148,97 @@ TEST(PolyhedronClosure, TJunctionIsAcceptedAfterSplitting) {
   EXPECT_TRUE(check.closed);
   EXPECT_TRUE(check.needed_t_junction_split);
   EXPECT_NEAR(mass_properties(v, faces).volume, 1.0, 1e-14);
+}
+
+namespace {
+
+/// Single linkage by testing every pair: the reference the grid-based merge must agree with.
+std::vector<int> merge_by_every_pair(const std::vector<Vec3>& v, double tol) {
+  std::vector<int> parent(v.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int a) {
+    while (parent[a] != a) a = parent[a];
+    return a;
+  };
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    for (std::size_t j = i + 1; j < v.size(); ++j) {
+      if ((v[i] - v[j]).norm() <= tol) {
+        const int a = find(static_cast<int>(i)), b = find(static_cast<int>(j));
+        parent[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  }
+  std::vector<int> root(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) root[i] = find(static_cast<int>(i));
+  return root;
+}
+
+/// A box whose faces x = 0 and x = 1 are n x n grids of quads, the four other faces single quads:
+/// 2 (n + 1)^2 vertices, all of each grid sharing one x, and T-junctions along the grids' borders.
+Mesh box_with_meshed_x_faces(int n) {
+  Mesh m;
+  auto id = [&](int side, int j, int k) { return side * (n + 1) * (n + 1) + j * (n + 1) + k; };
+  for (int side = 0; side < 2; ++side) {
+    for (int j = 0; j <= n; ++j) {
+      for (int k = 0; k <= n; ++k) m.vertices.emplace_back(side, double(j) / n, double(k) / n);
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int k = 0; k < n; ++k) {
+      m.faces.push_back({id(0, j, k), id(0, j, k + 1), id(0, j + 1, k + 1), id(0, j + 1, k)});  // outward -x
+      m.faces.push_back({id(1, j, k), id(1, j + 1, k), id(1, j + 1, k + 1), id(1, j, k + 1)});  // outward +x
+    }
+  }
+  m.faces.push_back({id(0, 0, 0), id(0, n, 0), id(1, n, 0), id(1, 0, 0)});  // z = 0, outward -z
+  m.faces.push_back({id(0, 0, n), id(1, 0, n), id(1, n, n), id(0, n, n)});  // z = 1
+  m.faces.push_back({id(0, 0, 0), id(1, 0, 0), id(1, 0, n), id(0, 0, n)});  // y = 0
+  m.faces.push_back({id(0, n, 0), id(0, n, n), id(1, n, n), id(1, n, 0)});  // y = 1
+  return m;
+}
+
+}  // namespace
+
+TEST(VertexMerging, AgreesWithEveryPairSingleLinkage) {
+  // Clusters of jittered copies, chains just under the tolerance, and isolated points, at
+  // tolerances from far below to above the jitter; the reference tests every pair.
+  std::mt19937 random(19);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), jitter(-1e-3, 1e-3);
+  std::vector<Vec3> v;
+  for (int c = 0; c < 300; ++c) {
+    const Vec3 centre(unit(random), unit(random), unit(random));
+    const int copies = 1 + c % 5;
+    for (int k = 0; k < copies; ++k) v.push_back(centre + Vec3(jitter(random), jitter(random), jitter(random)));
+  }
+  for (int k = 0; k < 50; ++k) v.emplace_back(0.5 + k * 0.99e-3, 0.25, 0.75);  // a chain along x
+  for (const double tol : {0.0, 1e-6, 5e-4, 1e-3, 2e-3, 1e-2}) {
+    EXPECT_EQ(merge_close_vertices(v, tol), merge_by_every_pair(v, tol)) << "tol " << tol;
+  }
+}
+
+TEST(VertexMerging, ManyCopiesOfOnePointAreOneVertex) {
+  std::vector<Vec3> v(200000, Vec3(1, 2, 3));
+  v.emplace_back(2, 2, 3);
+  const auto merged = merge_close_vertices(v, 1e-6);
+  EXPECT_TRUE(std::all_of(merged.begin(), merged.end() - 1, [](int c) { return c == 0; }));
+  EXPECT_EQ(merged.back(), static_cast<int>(v.size()) - 1);
+}
+
+TEST(PolyhedronClosure, FinelyMeshedFacesSharingACoordinateCloseInNearLinearTime) {
+  // 2 x 201^2 = 80802 vertices, half of them at x = 0 and half at x = 1: the sweep along x that
+  // merged vertices compared every pair within each half (3.3e9 tests), and the T-junction pass
+  // tested every edge against every vertex (2.6e10). Correctness is asserted here; the cost is
+  // what changed (O(n log n) now).
+  const Mesh m = box_with_meshed_x_faces(200);
+  const auto check = check_closure(m.vertices, m.faces, 1e-9);
+  EXPECT_TRUE(check.closed) << check.detail;
+  EXPECT_TRUE(check.consistent) << check.detail;
+  EXPECT_TRUE(check.needed_t_junction_split);
+  EXPECT_NEAR(mass_properties(m.vertices, m.faces).volume, 1.0, 1e-12);
+}
+
+TEST(PolyhedronClosure, AMissingGridQuadIsStillOpen) {
+  Mesh m = box_with_meshed_x_faces(20);
+  m.faces.erase(m.faces.begin() + 37);
+  const auto check = check_closure(m.vertices, m.faces, 1e-9);
+  EXPECT_FALSE(check.closed);
 }

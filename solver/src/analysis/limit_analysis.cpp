@@ -7,7 +7,6 @@
 #include "analysis/non_associative.hpp"
 #include "analysis/solve_steps.hpp"
 #include "model/errors.hpp"
-#include "rbla/conic/io.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -257,12 +256,6 @@ FormulationOptions choose_formulation(const model::Model& m, AnalysisResult& res
   return formulation_options;
 }
 
-void dump_problem(const conic::ConicProblem& problem, const std::string& path) {
-  const bool mps = path.size() > 4 && path.compare(path.size() - 4, 4, ".mps") == 0;
-  if (mps) conic::write_mps(problem, path);
-  else conic::write_cbf(problem, path);
-}
-
 AnalysisResult empty_result(const model::AnalysisRequest& request) {
   AnalysisResult result;
   result.type = request.type;
@@ -338,7 +331,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
   const Formulation formulation = build_formulation(m, formulation_options);
   record_size(formulation, result);
   result.assemble_seconds = seconds_since(deadline.start);
-  if (!options.dump_problem_path.empty()) dump_problem(formulation.problem, options.dump_problem_path);
+  if (options.problem_ready) options.problem_ready(formulation.problem);
   if (unsupported_blocks_fall(m, result)) {
     write_verdict_text(m, result);
     return result;

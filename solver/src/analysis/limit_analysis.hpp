@@ -6,6 +6,7 @@
 #include "model/model.hpp"
 #include "rbla/conic/solver.hpp"
 
+#include <functional>
 #include <iosfwd>
 #include <string>
 
@@ -16,9 +17,9 @@ struct AnalysisOptions {
   std::ostream* log = nullptr;
   /// Called once per interior-point iteration; returning false cancels the analysis.
   conic::ProgressCallback progress;
-  /// When not empty, the first conic problem is written there: CBF (any problem) or, for a
-  /// linear program and a path ending in ".mps", free MPS. See rbla/conic/io.hpp.
-  std::string dump_problem_path;
+  /// Called once with the first conic problem, before it is solved (`rbla solve --dump-problem`
+  /// writes it for other solvers: io/problem_file.hpp). What it throws ends the analysis.
+  std::function<void(const conic::ConicProblem&)> problem_ready;
   /// Threads of each conic solve, 1 or 2 (conic::Settings::threads).
   int threads = 2;
 };

@@ -1,7 +1,10 @@
 #include "geometry/polyhedron.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <sstream>
@@ -75,33 +78,89 @@ MassProperties mass_properties(const std::vector<Vec3>& vertices, const FaceList
 
 namespace {
 
-/// Maps every vertex to the smallest index of a vertex within `tol` of it (sweep along x).
+/// Classes of vertices under union; each class is represented by its smallest index.
+class VertexClasses {
+ public:
+  explicit VertexClasses(int n) : parent_(static_cast<std::size_t>(n)) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int find(int a) {
+    while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
+    return a;
+  }
+  void unite(int a, int b) {
+    a = find(a), b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+using CellKey = std::array<std::int64_t, 3>;
+
+/// The vertices of one grid cell: positions [begin, end) of the sorted list.
+struct Cell {
+  CellKey key;
+  std::size_t begin, end;
+};
+
+}  // namespace
+
 std::vector<int> merge_close_vertices(const std::vector<Vec3>& vertices, double tol) {
   const int n = static_cast<int>(vertices.size());
-  std::vector<int> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return vertices[a].x() < vertices[b].x(); });
-  std::vector<int> canonical(n);
-  std::iota(canonical.begin(), canonical.end(), 0);
+  VertexClasses classes(n);
+  if (n == 0) return {};
+  Vec3 lo = vertices[0], hi = vertices[0];
+  for (const Vec3& v : vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const double extent = (hi - lo).maxCoeff();
+  double h = std::max(tol, 0.0) / 1.75;
+  const bool cell_is_close = h > 0.0 && extent / h <= std::ldexp(1.0, 50);
+  if (!cell_is_close) h = std::max(extent * std::ldexp(1.0, -50), std::numeric_limits<double>::min());
+  std::vector<std::pair<CellKey, int>> sorted(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
-    const int a = order[i];
-    for (int j = i + 1; j < n && vertices[order[j]].x() - vertices[a].x() <= tol; ++j) {
-      const int b = order[j];
-      if ((vertices[a] - vertices[b]).norm() <= tol) {
-        const int root = std::min(canonical[a], canonical[b]);
-        canonical[a] = canonical[b] = root;
+    const Vec3 c = ((vertices[i] - lo) / h).array().floor();
+    sorted[i] = {{static_cast<std::int64_t>(c.x()), static_cast<std::int64_t>(c.y()), static_cast<std::int64_t>(c.z())}, i};
+  }
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<Cell> cells;
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    if (cells.empty() || cells.back().key != sorted[k].first) cells.push_back({sorted[k].first, k, k});
+    cells.back().end = k + 1;
+  }
+  // Joins the classes of cells a and b (a == b: within one cell) where a pair is within tol.
+  auto connect = [&](const Cell& a, const Cell& b) {
+    for (std::size_t i = a.begin; i < a.end; ++i) {
+      for (std::size_t j = (&a == &b ? i + 1 : b.begin); j < b.end; ++j) {
+        if (cell_is_close && classes.find(sorted[i].second) == classes.find(sorted[j].second)) return;
+        if ((vertices[sorted[i].second] - vertices[sorted[j].second]).norm() <= tol) {
+          classes.unite(sorted[i].second, sorted[j].second);
+          if (cell_is_close) return;
+        }
+      }
+    }
+  };
+  for (const Cell& cell : cells) {
+    if (cell_is_close) {
+      for (std::size_t k = cell.begin + 1; k < cell.end; ++k) classes.unite(sorted[cell.begin].second, sorted[k].second);
+    } else {
+      connect(cell, cell);
+    }
+    for (std::int64_t dx = 0; dx <= 2; ++dx) {
+      for (std::int64_t dy = dx == 0 ? 0 : -2; dy <= 2; ++dy) {
+        for (std::int64_t dz = (dx == 0 && dy == 0) ? 1 : -2; dz <= 2; ++dz) {
+          const CellKey key{cell.key[0] + dx, cell.key[1] + dy, cell.key[2] + dz};
+          const auto other = std::lower_bound(cells.begin(), cells.end(), key,
+                                              [](const Cell& c, const CellKey& k) { return c.key < k; });
+          if (other != cells.end() && other->key == key) connect(cell, *other);
+        }
       }
     }
   }
-  // Resolve chains so each vertex points at its class's representative.
-  for (int i = 0; i < n; ++i) {
-    int root = canonical[i];
-    while (canonical[root] != root) root = canonical[root];
-    canonical[i] = root;
-  }
+  std::vector<int> canonical(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) canonical[i] = classes.find(i);
   return canonical;
 }
+
+namespace {
 
 using Edge = std::pair<int, int>;
 
@@ -147,6 +206,64 @@ ClosureCheck judge(const std::map<Edge, int>& count) {
   return check;
 }
 
+/// T-junctions (a vertex of one face lying on an edge of another): each edge left unmatched is
+/// split at the vertices lying on it, so that its pieces can meet the edges through that vertex.
+/// Only unmatched edges need it (a matched pair would be split alike on both sides), and only at
+/// ends of unmatched edges (the pieces' partners are unmatched too), found by a sort along the
+/// edge's longest axis: O((E + U) log U) for E edges and U unmatched ones, where testing every
+/// edge against every vertex was O(E V).
+std::vector<std::vector<int>> split_at_t_junctions(const std::vector<Vec3>& vertices,
+                                                   const std::vector<std::vector<int>>& loops,
+                                                   const std::map<Edge, int>& count, double tol) {
+  auto times = [&](int u, int v) {
+    const auto found = count.find({u, v});
+    return found == count.end() ? 0 : found->second;
+  };
+  std::vector<int> ends;
+  for (const auto& [edge, n] : count) {
+    if (times(edge.second, edge.first) != n) ends.insert(ends.end(), {edge.first, edge.second});
+  }
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+  std::array<std::vector<int>, 3> by_axis;
+  for (int a = 0; a < 3; ++a) {
+    by_axis[a] = ends;
+    std::sort(by_axis[a].begin(), by_axis[a].end(), [&](int p, int q) { return vertices[p][a] < vertices[q][a]; });
+  }
+  std::vector<std::vector<int>> split;
+  split.reserve(loops.size());
+  for (const auto& loop : loops) {
+    std::vector<int> refined;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const int u = loop[i];
+      const int v = loop[(i + 1) % loop.size()];
+      refined.push_back(u);
+      const Vec3 p = vertices[u];
+      const Vec3 d = vertices[v] - p;
+      const double length2 = d.squaredNorm();
+      if (length2 <= tol * tol || times(v, u) == times(u, v)) continue;
+      int axis = 0;
+      d.cwiseAbs().maxCoeff(&axis);
+      const auto& sorted = by_axis[axis];
+      const double from = std::min(p[axis], vertices[v][axis]) - tol, to = std::max(p[axis], vertices[v][axis]) + tol;
+      auto it = std::lower_bound(sorted.begin(), sorted.end(), from,
+                                 [&](int w, double x) { return vertices[w][axis] < x; });
+      std::vector<std::pair<double, int>> on_edge;
+      for (; it != sorted.end() && vertices[*it][axis] <= to; ++it) {
+        const int w = *it;
+        if (w == u || w == v) continue;
+        const double t = (vertices[w] - p).dot(d) / length2;
+        if (t <= 0.0 || t >= 1.0) continue;
+        if ((p + t * d - vertices[w]).norm() <= tol) on_edge.emplace_back(t, w);
+      }
+      std::sort(on_edge.begin(), on_edge.end());
+      for (const auto& [t, w] : on_edge) refined.push_back(w);
+    }
+    split.push_back(std::move(refined));
+  }
+  return split;
+}
+
 }  // namespace
 
 ClosureCheck check_closure(const std::vector<Vec3>& vertices, const FaceList& faces, double tol) {
@@ -162,38 +279,10 @@ ClosureCheck check_closure(const std::vector<Vec3>& vertices, const FaceList& fa
     while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
     merged.push_back(std::move(loop));
   }
-  ClosureCheck check = judge(count_directed_edges(merged));
+  const std::map<Edge, int> count = count_directed_edges(merged);
+  ClosureCheck check = judge(count);
   if (check.closed && check.consistent) return check;
-
-  // T-junctions: split every edge at the (distinct) vertices lying on it, then judge again.
-  std::vector<int> representatives;
-  for (int i = 0; i < static_cast<int>(vertices.size()); ++i) {
-    if (canonical[i] == i) representatives.push_back(i);
-  }
-  std::vector<std::vector<int>> split;
-  split.reserve(merged.size());
-  for (const auto& loop : merged) {
-    std::vector<int> refined;
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      const int u = loop[i];
-      const int v = loop[(i + 1) % loop.size()];
-      refined.push_back(u);
-      const Vec3 p = vertices[u];
-      const Vec3 d = vertices[v] - p;
-      const double length2 = d.squaredNorm();
-      if (length2 <= tol * tol) continue;
-      std::vector<std::pair<double, int>> on_edge;
-      for (int w : representatives) {
-        if (w == u || w == v) continue;
-        const double t = (vertices[w] - p).dot(d) / length2;
-        if (t <= 0.0 || t >= 1.0) continue;
-        if ((p + t * d - vertices[w]).norm() <= tol) on_edge.emplace_back(t, w);
-      }
-      std::sort(on_edge.begin(), on_edge.end());
-      for (const auto& [t, w] : on_edge) refined.push_back(w);
-    }
-    split.push_back(std::move(refined));
-  }
+  std::vector<std::vector<int>> split = split_at_t_junctions(vertices, merged, count, tol);
   ClosureCheck refined_check = judge(count_directed_edges(split));
   refined_check.needed_t_junction_split = refined_check.closed && refined_check.consistent;
   if (!(refined_check.closed && refined_check.consistent)) return check;  // report the plain failure

@@ -41,6 +41,16 @@ struct MassProperties {
 /// (e.g. Zhang & Chen 2001, "Efficient feature extraction for 2D/3D objects in mesh representation").
 MassProperties mass_properties(const std::vector<Vec3>& vertices, const FaceList& faces);
 
+/// Vertices closer than `tol` are one vertex, and so are chains of them (single linkage): maps
+/// every vertex to the smallest index of its class. O(n log n): the vertices are sorted into grid
+/// cells of side h = tol / 1.75. A cell's diagonal, sqrt(3) h, is below tol, so a cell's vertices
+/// are one class without a test; two vertices within tol lie at most ceil(1.75) = 2 cells apart
+/// along each axis, so each cell is compared with the 62 cells ahead of it in a 5x5x5 block (once
+/// a pair is joined, the two cells are one class and the comparison stops). A sweep along one
+/// axis, as before, was quadratic when many vertices share a coordinate (a finely meshed face).
+/// When tol is below 2^-50 of the vertices' extent the cells are made coarser and tested pairwise.
+std::vector<int> merge_close_vertices(const std::vector<Vec3>& vertices, double tol);
+
 /// Result of checking that the faces close a volume with a consistent orientation.
 struct ClosureCheck {
   bool closed = true;        // every edge is matched by an edge of opposite direction

@@ -163,9 +163,15 @@ void prepare_block(model::Block& block, std::size_t index, double model_toleranc
   }
 }
 
+/// Where a given interface is in the model file: the reader drops repeated interfaces, so its
+/// position in the model's list may be smaller.
+std::string interface_pointer(const model::ContactInterface& contact, std::size_t index) {
+  return "/interfaces/" + std::to_string(contact.source_index >= 0 ? static_cast<std::size_t>(contact.source_index) : index);
+}
+
 void prepare_given_interface(model::ContactInterface& contact, std::size_t index, const model::Model& m,
                              double tolerance, std::vector<InputIssue>& errors) {
-  const std::string pointer = "/interfaces/" + std::to_string(index);
+  const std::string pointer = interface_pointer(contact, index);
   std::vector<int> all(contact.polygon.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
   const FaceGeometry face = face_geometry(contact.polygon, all);
@@ -233,7 +239,7 @@ PrepareReport prepare_model(model::Model& m) {
     if (m.blocks[contact.block_a].is_support() && m.blocks[contact.block_b].is_support()) {
       m.warnings.push_back({"support_interface_ignored",
                             "interface '" + contact.id + "' joins two supports; it carries no unknowns and is ignored",
-                            "/interfaces/" + std::to_string(i)});
+                            interface_pointer(contact, i)});
       continue;
     }
     kept.push_back(contact);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "geometry/prepare_model.hpp"
+#include "io/input_limits.hpp"
 #include "io/result_writer.hpp"
 #include "model/model.hpp"
 
@@ -17,8 +18,10 @@ struct LoadedModel {
 };
 
 /// Throws model::ModelError (with JSON pointers) on any bad input.
-LoadedModel load_model_text(const std::string& text);
-/// As load_model_text, reading `path` ("-" = standard input); the read time is included.
-LoadedModel load_model_file(const std::string& path);
+LoadedModel load_model_text(const std::string& text, const InputLimits& limits = {});
+/// As load_model_text, reading `path` ("-" = standard input: see io/input_file.hpp) as the parser
+/// needs it, so only the parsed document is held, never the whole text as well. Throws
+/// io::FileError when the path cannot be read.
+LoadedModel load_model_file(const std::string& path, const InputLimits& limits = {});
 
 }  // namespace rbla::io

@@ -1,5 +1,8 @@
 #include "io/model_reader.hpp"
 
+#include "io/input_file.hpp"
+#include "io/json_reader.hpp"
+#include "io/printable.hpp"
 #include "io/schema_validation.hpp"
 
 #include <nlohmann/json.hpp>
@@ -9,7 +12,10 @@
 #include <functional>
 #include <iostream>
 #include <iterator>
+#include <numeric>
+#include <algorithm>
 #include <sstream>
+#include <optional>
 #include <unordered_set>
 
 namespace rbla::io {
@@ -69,13 +75,31 @@ class IssueList {
   std::vector<InputIssue> issues_;
 };
 
+std::string format_number(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+/// A user string (id, label) as messages quote it: escaped and cut (io/printable.hpp).
+std::string quote_user(const std::string& text) { return "'" + printable(text) + "'"; }
+
+/// The unit vector along `d`; empty for the zero vector. Scaled by its largest component first:
+/// [1e-170, 0, 0] is the direction +x, though its squared length underflows to zero.
+std::optional<Vec3> direction_of(const Vec3& d) {
+  const double largest = d.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0)) return std::nullopt;
+  return Vec3(d / largest).normalized();
+}
+
 model::PointLoad read_load(const json& entry, const std::string& pointer, const model::Model& m,
                            IssueList& issues) {
   model::PointLoad load;
   const std::string id = entry.at("block").get<std::string>();
   const auto found = m.block_index.find(id);
   if (found == m.block_index.end()) {
-    issues.add(pointer + "/block", "no block has id '" + id + "'");
+    issues.add(pointer + "/block", "no block has id " + quote_user(id));
     return load;
   }
   load.block = found->second;
@@ -87,7 +111,7 @@ model::PointLoad read_load(const json& entry, const std::string& pointer, const 
   load.point = entry.contains("point") ? Vec3(to_vec3(entry["point"]) * lf)
                                        : Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   if (m.blocks[load.block].is_support()) {
-    issues.add(pointer + "/block", "block '" + id + "' is a support (role " +
+    issues.add(pointer + "/block", "block " + quote_user(id) + " is a support (role " +
                                        model::to_string(m.blocks[load.block].role) +
                                        "); loads act on free blocks only");
   }
@@ -107,21 +131,23 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
   const json& s = doc["analysis"];
   a.type = s.value("type", "load_multiplier") == "settlement" ? model::AnalysisType::Settlement
                                                                 : model::AnalysisType::LoadMultiplier;
+  bool seismic_refused = false;
   if (s.contains("seismic")) {
-    const Vec3 d = to_vec3(s["seismic"]["direction"]);
-    if (d.norm() == 0.0) {
-      issues.add("/analysis/seismic/direction", "must be a non-zero vector");
-    } else if (std::abs(d.normalized().dot(m.gravity)) > 1e-6) {
+    const std::optional<Vec3> d = direction_of(to_vec3(s["seismic"]["direction"]));
+    seismic_refused = !d || std::abs(d->dot(m.gravity)) > 1e-6;
+    if (!d) {
+      issues.add("/analysis/seismic/direction", "must be a non-zero vector (all three components are 0)");
+    } else if (seismic_refused) {
       issues.add("/analysis/seismic/direction",
                  "must be horizontal: perpendicular to gravity (" + m.gravity_axis + ")");
     } else {
-      a.seismic_direction = d.normalized();
+      a.seismic_direction = *d;
     }
   }
   if (s.contains("settlement") && s["settlement"].contains("direction")) {
-    const Vec3 d = to_vec3(s["settlement"]["direction"]);
-    if (d.norm() == 0.0) issues.add("/analysis/settlement/direction", "must be a non-zero vector");
-    else a.settlement_direction = d.normalized();
+    const std::optional<Vec3> d = direction_of(to_vec3(s["settlement"]["direction"]));
+    if (!d) issues.add("/analysis/settlement/direction", "must be a non-zero vector (all three components are 0)");
+    else a.settlement_direction = *d;
   }
   a.friction_model = s.value("friction_model", "associative") == "non_associative"
                          ? model::FrictionModel::NonAssociative
@@ -150,7 +176,8 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
   }
   a.time_limit_seconds = s.value("time_limit", 0.0);
 
-  if (a.type == model::AnalysisType::LoadMultiplier && !has_live && !a.seismic_direction) {
+  // A seismic direction that was given but refused has its own message; this one would mislead.
+  if (a.type == model::AnalysisType::LoadMultiplier && !has_live && !a.seismic_direction && !seismic_refused) {
     issues.add("/analysis", "a load-multiplier analysis needs live loads (/loads/live) or a seismic direction "
                             "(/analysis/seismic/direction)");
   }
@@ -167,94 +194,9 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
   }
 }
 
-/// Parser callback that finds the first repeated name in a JSON object. nlohmann keeps the last
-/// value of a repeated name silently, so `"unit_weight": 18, ..., "unit_weight": 1.8e7` would
-/// pick one without a word; a model must not be ambiguous. Tracks the JSON pointer on the way.
-class DuplicateKeyCheck {
- public:
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start: frames_.push_back({false, 0, {}, {}}); break;
-      case json::parse_event_t::array_start: frames_.push_back({true, 0, {}, {}}); break;
-      case json::parse_event_t::key:
-        if (!frames_.empty() && parsed.is_string()) {
-          Frame& top = frames_.back();
-          top.key = parsed.get<std::string>();
-          if (!top.keys.insert(top.key).second && pointer_.empty()) {
-            key_ = top.key;
-            for (const Frame& f : frames_) {
-              pointer_ += "/" + (f.array ? std::to_string(f.index) : model::pointer_token(f.key));
-            }
-          }
-        }
-        break;
-      case json::parse_event_t::value: next_element(); break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        if (!frames_.empty()) frames_.pop_back();
-        next_element();
-        break;
-    }
-    return true;
-  }
-  /// "" when no name repeats; else the JSON pointer of the second occurrence.
-  const std::string& pointer() const { return pointer_; }
-  const std::string& key() const { return key_; }
 
- private:
-  struct Frame {
-    bool array = false;
-    std::size_t index = 0;  // array: index of the element being read
-    std::string key;        // object: name of the member being read
-    std::unordered_set<std::string> keys;
-  };
-  void next_element() {
-    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
-  }
-  std::vector<Frame> frames_;
-  std::string pointer_, key_;
-};
-
-}  // namespace
-
-std::string read_text(const std::string& path) {
-  if (path == "-") {
-    std::ostringstream buffer;
-    buffer << std::cin.rdbuf();
-    return buffer.str();
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ModelError("", "cannot open '" + path + "' for reading");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw ModelError("", "error while reading '" + path + "'");
-  return text;
-}
-
-model::Model parse_model(const std::string& text) {
-  json doc;
-  DuplicateKeyCheck duplicates;
-  try {
-    doc = json::parse(text, std::ref(duplicates));
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    const auto colon = what.find("parse error");
-    throw ModelError("", "malformed JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
-  } catch (const json::out_of_range& e) {
-    // A number literal beyond double range (e.g. 1e999) is out_of_range.406, not a parse_error.
-    std::string what = e.what();
-    const auto bracket = what.find("] ");
-    throw ModelError("", "malformed JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
-  }
-  if (!duplicates.pointer().empty()) {
-    throw ModelError(duplicates.pointer(), "the name '" + duplicates.key() +
-                                               "' appears twice in the same object: which value is meant is ambiguous");
-  }
-  if (const auto issues = validate_against_schema(doc, SchemaKind::Model); !issues.empty()) {
-    throw ModelError(issues);
-  }
-
-  model::Model m;
-  IssueList issues;
+/// Units, gravity, title and defaults; returns the default unit weight (file units).
+double read_units_and_defaults(const json& doc, model::Model& m) {
   m.title = doc.value("title", "");
   const json& units = doc["units"];
   m.units.length_name = units["length"].get<std::string>();
@@ -265,15 +207,40 @@ model::Model parse_model(const std::string& text) {
   m.units.unit_weight_to_kN_m3 = unit_weight_factor(m.units.unit_weight_name);
   m.gravity_axis = doc.value("gravity", "-z");
   m.gravity = gravity_vector(m.gravity_axis);
-
   double default_unit_weight = 18.0;
   if (doc.contains("defaults")) {
     default_unit_weight = doc["defaults"].value("unit_weight", default_unit_weight);
     m.default_friction = doc["defaults"].value("friction", m.default_friction);
   }
+  return default_unit_weight;
+}
 
+std::vector<std::vector<int>> read_faces(const json& faces, std::size_t num_vertices, const std::string& pointer,
+                                         const std::string& block_id, IssueList& issues) {
+  std::vector<std::vector<int>> out;
+  out.reserve(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    std::vector<int> face;
+    face.reserve(faces[f].size());
+    for (std::size_t k = 0; k < faces[f].size(); ++k) {
+      // The schema has checked for integers >= 0 (int64: json_reader turns larger ones into doubles).
+      const auto index = faces[f][k].get<std::int64_t>();
+      if (index >= static_cast<std::int64_t>(num_vertices)) {
+        issues.add(at(at(pointer + "/faces", f), k),
+                   "vertex index " + std::to_string(index) + " is out of range: block " + quote_user(block_id) + " has " +
+                       std::to_string(num_vertices) + " vertices (indices 0 to " + std::to_string(num_vertices - 1) +
+                       ")");
+        continue;
+      }
+      face.push_back(static_cast<int>(index));
+    }
+    out.push_back(std::move(face));
+  }
+  return out;
+}
+
+void read_blocks(const json& blocks, double default_unit_weight, model::Model& m, IssueList& issues) {
   const double lf = m.units.length_to_m;
-  const json& blocks = doc["blocks"];
   m.blocks.reserve(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const json& b = blocks[i];
@@ -288,106 +255,235 @@ model::Model parse_model(const std::string& text) {
     const json& vertices = b["vertices"];
     block.vertices.reserve(vertices.size());
     for (const json& v : vertices) block.vertices.push_back(to_vec3(v) * lf);
-    const json& faces = b["faces"];
-    block.faces.reserve(faces.size());
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      std::vector<int> face;
-      face.reserve(faces[f].size());
-      for (std::size_t k = 0; k < faces[f].size(); ++k) {
-        const auto index = faces[f][k].get<std::int64_t>();
-        if (index >= static_cast<std::int64_t>(vertices.size())) {
-          issues.add(at(at(pointer + "/faces", f), k),
-                     "vertex index " + std::to_string(index) + " is out of range: block '" + block.id +
-                         "' has " + std::to_string(vertices.size()) + " vertices");
-          continue;
-        }
-        face.push_back(static_cast<int>(index));
-      }
-      block.faces.push_back(std::move(face));
-    }
+    block.faces = read_faces(b["faces"], vertices.size(), pointer, block.id, issues);
     block.unit_weight = b.value("unit_weight", default_unit_weight) * m.units.unit_weight_to_kN_m3;
     if (b.contains("volume")) block.cad_volume = b["volume"].get<double>() * lf * lf * lf;
     if (b.contains("centroid")) block.cad_centroid = to_vec3(b["centroid"]) * lf;
 
     const auto [existing, inserted] = m.block_index.emplace(block.id, static_cast<int>(i));
     if (!inserted) {
-      issues.add(pointer + "/id", "duplicate block id '" + block.id + "' (first used at " +
+      issues.add(pointer + "/id", "duplicate block id " + quote_user(block.id) + " (first used at " +
                                       at("/blocks", existing->second) + ")");
     }
     m.blocks.push_back(std::move(block));
   }
-
   bool any_free = false;
   for (const auto& block : m.blocks) any_free |= !block.is_support();
   if (!any_free) issues.add("/blocks", "no block has role 'free': there is nothing to analyse");
+}
 
-  if (doc.contains("interfaces")) {
-    const json& list = doc["interfaces"];
-    std::unordered_map<std::string, std::size_t> seen;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const json& entry = list[i];
-      const std::string pointer = at("/interfaces", i);
-      model::ContactInterface contact;
-      contact.id = entry.value("id", "I" + std::to_string(i));
-      contact.label = entry.value("label", "");
-      contact.friction = entry.value("friction", m.default_friction);
-      const auto [existing, inserted] = seen.emplace(contact.id, i);
-      if (!inserted) {
-        issues.add(pointer + "/id", "duplicate interface id '" + contact.id + "' (first used at " +
-                                        at("/interfaces", existing->second) + ")");
-      }
-      int ends[2] = {-1, -1};
-      for (int k = 0; k < 2; ++k) {
-        const std::string id = entry["blocks"][k].get<std::string>();
-        const auto found = m.block_index.find(id);
-        if (found == m.block_index.end()) {
-          issues.add(at(pointer + "/blocks", k), "no block has id '" + id + "'");
-        } else {
-          ends[k] = found->second;
-        }
-      }
-      if (ends[0] >= 0 && ends[0] == ends[1]) {
-        issues.add(pointer + "/blocks", "an interface joins two different blocks; both are '" +
-                                            entry["blocks"][0].get<std::string>() + "'");
-      }
-      contact.block_a = ends[0];
-      contact.block_b = ends[1];
-      for (const json& p : entry["polygon"]) contact.polygon.push_back(to_vec3(p) * lf);
-      m.interfaces.push_back(std::move(contact));
+/// Position in `polygon` of its k-th corner read from corner `start` in direction `step` (+1, -1).
+inline std::size_t corner(std::size_t n, std::size_t start, int step, std::size_t k) {
+  return step > 0 ? (start + k) % n : (start + n - k % n) % n;
+}
+
+/// The reading of a polygon that every copy of it shares, whatever corner and direction it
+/// starts from: the lexicographically smallest sequence of corners.
+struct CanonicalPolygon {
+  std::size_t start = 0;
+  int step = 1;
+};
+
+bool corner_less(const Vec3& a, const Vec3& b) {
+  return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+}
+
+/// -1, 0, 1 as the polygon p read as `cp` sorts before, equal to or after q read as `cq`.
+int compare_polygons(const std::vector<Vec3>& p, CanonicalPolygon cp, const std::vector<Vec3>& q, CanonicalPolygon cq) {
+  if (p.size() != q.size()) return p.size() < q.size() ? -1 : 1;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const Vec3& a = p[corner(p.size(), cp.start, cp.step, k)];
+    const Vec3& b = q[corner(q.size(), cq.start, cq.step, k)];
+    if (corner_less(a, b)) return -1;
+    if (corner_less(b, a)) return 1;
+  }
+  return 0;
+}
+
+CanonicalPolygon canonical(const std::vector<Vec3>& polygon) {
+  CanonicalPolygon best;
+  if (polygon.empty()) return best;
+  std::size_t lowest = 0;
+  for (std::size_t k = 1; k < polygon.size(); ++k) {
+    if (corner_less(polygon[k], polygon[lowest])) lowest = k;
+  }
+  // Readings from every copy of the lowest corner, both ways; a polygon with many equal corners
+  // has zero area and is refused later, so a few candidates are enough.
+  std::size_t tried = 0;
+  for (std::size_t k = 0; k < polygon.size() && tried < 8; ++k) {
+    if (corner_less(polygon[lowest], polygon[k])) continue;
+    ++tried;
+    for (int step : {1, -1}) {
+      const CanonicalPolygon candidate{k, step};
+      if (compare_polygons(polygon, candidate, polygon, best) < 0) best = candidate;
     }
   }
+  return best;
+}
 
-  if (doc.contains("detection")) {
-    const json& d = doc["detection"];
-    const std::string mode = d.value("mode", "auto");
-    m.detection.mode = mode == "off"     ? model::DetectionMode::Off
-                       : mode == "merge" ? model::DetectionMode::Merge
-                                         : model::DetectionMode::Auto;
-    m.detection.relative_tolerance = d.value("relative_tolerance", m.detection.relative_tolerance);
-    if (d.contains("distance_tolerance")) m.detection.distance_tolerance = d["distance_tolerance"].get<double>() * lf;
-    m.detection.angle_tolerance_degrees = d.value("angle_tolerance", m.detection.angle_tolerance_degrees);
-    m.detection.min_area_fraction = d.value("min_area_fraction", m.detection.min_area_fraction);
+/// Interfaces given more than once: the same two blocks (either order) and the same polygon (the
+/// same corners in the same cyclic order, from any corner, either way round). A repeat adds
+/// contact points where there already are some; the friction cones of coincident points add up
+/// to the same cone, so the forces the joint admits do not change, only the unknowns multiply
+/// (10^5 copies of a square joint: 4 * 10^5 contact points). Each joint is kept once and one
+/// warning says how many repeats were dropped; repeats that disagree on friction are ambiguous
+/// and refused. Sorting by a canonical reading, O(n log n) in the interfaces. A polygon with more
+/// than 8 copies of its lowest corner may keep its repeats (harmless: as before).
+void drop_repeated_interfaces(model::Model& m, IssueList& issues) {
+  const auto& list = m.interfaces;
+  std::vector<CanonicalPolygon> forms(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) forms[i] = canonical(list[i].polygon);
+  auto pair_of = [&](std::size_t i) {
+    return std::make_pair(std::min(list[i].block_a, list[i].block_b), std::max(list[i].block_a, list[i].block_b));
+  };
+  auto compare = [&](std::size_t i, std::size_t j) {
+    if (pair_of(i) != pair_of(j)) return pair_of(i) < pair_of(j) ? -1 : 1;
+    return compare_polygons(list[i].polygon, forms[i], list[j].polygon, forms[j]);
+  };
+  std::vector<std::size_t> order(list.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+    const int c = compare(i, j);
+    return c < 0 || (c == 0 && i < j);
+  });
+  std::vector<char> repeat(list.size(), 0);
+  std::size_t repeats = 0, conflicts = 0;
+  std::size_t first_repeat = list.size(), its_original = 0, first_conflict = list.size(), conflict_original = 0;
+  for (std::size_t run = 0, k = 1; k < order.size(); ++k) {
+    if (compare(order[run], order[k]) != 0) {
+      run = k;
+      continue;
+    }
+    const std::size_t i = order[k], original = order[run];  // original: the run's first in the file
+    if (list[i].friction != list[original].friction) {
+      if (conflicts++ == 0 || i < first_conflict) first_conflict = i, conflict_original = original;
+      continue;
+    }
+    repeat[i] = 1;
+    if (repeats++ == 0 || i < first_repeat) first_repeat = i, its_original = original;
   }
+  if (conflicts > 0) {
+    issues.add(at("/interfaces", first_conflict),
+               "repeats " + at("/interfaces", conflict_original) + " (the same two blocks and the same polygon) with " +
+                   "another friction (" + format_number(list[first_conflict].friction) + " against " +
+                   format_number(list[conflict_original].friction) + "): which is meant is ambiguous" +
+                   (conflicts > 1 ? " (" + std::to_string(conflicts) + " interfaces in all are such repeats)" : ""));
+    return;
+  }
+  if (repeats == 0) return;
+  m.warnings.push_back(
+      {"repeated_interfaces",
+       std::to_string(repeats) + (repeats == 1 ? " interface repeats" : " interfaces repeat") +
+           " an earlier one (the same two blocks and the same polygon; first " + at("/interfaces", first_repeat) +
+           ", a repeat of " + at("/interfaces", its_original) + "): each joint is kept once",
+       at("/interfaces", first_repeat)});
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < m.interfaces.size(); ++i) {
+    if (repeat[i]) continue;
+    if (kept != i) m.interfaces[kept] = std::move(m.interfaces[i]);
+    ++kept;
+  }
+  m.interfaces.resize(kept);
+}
 
+void read_interfaces(const json& list, model::Model& m, IssueList& issues) {
+  std::unordered_map<std::string, std::size_t> seen;
+  bool references_sound = true;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const json& entry = list[i];
+    const std::string pointer = at("/interfaces", i);
+    model::ContactInterface contact;
+    contact.id = entry.value("id", "I" + std::to_string(i));
+    contact.label = entry.value("label", "");
+    contact.friction = entry.value("friction", m.default_friction);
+    contact.source_index = static_cast<int>(i);
+    const auto [existing, inserted] = seen.emplace(contact.id, i);
+    if (!inserted) {
+      issues.add(pointer + "/id", "duplicate interface id " + quote_user(contact.id) + " (first used at " +
+                                      at("/interfaces", existing->second) + ")");
+    }
+    int ends[2] = {-1, -1};
+    for (int k = 0; k < 2; ++k) {
+      const std::string id = entry["blocks"][k].get<std::string>();
+      const auto found = m.block_index.find(id);
+      if (found == m.block_index.end()) {
+        issues.add(at(pointer + "/blocks", k), "no block has id " + quote_user(id));
+        references_sound = false;
+      } else {
+        ends[k] = found->second;
+      }
+    }
+    if (ends[0] >= 0 && ends[0] == ends[1]) {
+      issues.add(pointer + "/blocks", "an interface joins two different blocks; both are " +
+                                          quote_user(entry["blocks"][0].get<std::string>()));
+      references_sound = false;
+    }
+    contact.block_a = ends[0];
+    contact.block_b = ends[1];
+    for (const json& p : entry["polygon"]) contact.polygon.push_back(to_vec3(p) * m.units.length_to_m);
+    m.interfaces.push_back(std::move(contact));
+  }
+  if (references_sound) drop_repeated_interfaces(m, issues);
+}
+
+void read_detection(const json& d, model::Model& m) {
+  const std::string mode = d.value("mode", "auto");
+  m.detection.mode = mode == "off"     ? model::DetectionMode::Off
+                     : mode == "merge" ? model::DetectionMode::Merge
+                                       : model::DetectionMode::Auto;
+  m.detection.relative_tolerance = d.value("relative_tolerance", m.detection.relative_tolerance);
+  if (d.contains("distance_tolerance")) {
+    m.detection.distance_tolerance = d["distance_tolerance"].get<double>() * m.units.length_to_m;
+  }
+  m.detection.angle_tolerance_degrees = d.value("angle_tolerance", m.detection.angle_tolerance_degrees);
+  m.detection.min_area_fraction = d.value("min_area_fraction", m.detection.min_area_fraction);
+}
+
+void read_loads(const json& loads, model::Model& m, IssueList& issues) {
+  for (const char* kind : {"dead", "live"}) {
+    if (!loads.contains(kind)) continue;
+    auto& target = std::string(kind) == "dead" ? m.dead_loads : m.live_loads;
+    for (std::size_t i = 0; i < loads[kind].size(); ++i) {
+      target.push_back(read_load(loads[kind][i], at(std::string("/loads/") + kind, i), m, issues));
+    }
+  }
+}
+
+}  // namespace
+
+std::string read_text(const std::string& path, const InputLimits& limits) {
+  InputFile input(path, limits.max_bytes);
+  std::ostringstream buffer;
+  buffer << input.stream().rdbuf();
+  return buffer.str();
+}
+
+model::Model parse_model(const std::string& text, const InputLimits& limits) {
+  return model_from_json(read_json(std::string_view(text), limits));
+}
+
+model::Model parse_model(std::istream& in, const InputLimits& limits) { return model_from_json(read_json(in, limits)); }
+
+model::Model model_from_json(const json& doc) {
+  if (const auto issues = validate_against_schema(doc, SchemaKind::Model); !issues.empty()) {
+    throw ModelError(issues);
+  }
+  model::Model m;
+  IssueList issues;
+  const double default_unit_weight = read_units_and_defaults(doc, m);
+  read_blocks(doc["blocks"], default_unit_weight, m, issues);
+  if (doc.contains("interfaces")) read_interfaces(doc["interfaces"], m, issues);
+  if (doc.contains("detection")) read_detection(doc["detection"], m);
   issues.throw_if_any();  // loads refer to blocks by id: the index must be sound first
 
-  if (doc.contains("loads")) {
-    const json& loads = doc["loads"];
-    for (const char* kind : {"dead", "live"}) {
-      if (!loads.contains(kind)) continue;
-      auto& target = std::string(kind) == "dead" ? m.dead_loads : m.live_loads;
-      for (std::size_t i = 0; i < loads[kind].size(); ++i) {
-        target.push_back(read_load(loads[kind][i], at(std::string("/loads/") + kind, i), m, issues));
-      }
-    }
-  }
+  if (doc.contains("loads")) read_loads(doc["loads"], m, issues);
   read_analysis(doc, m, issues);
   if (m.analysis.type == model::AnalysisType::LoadMultiplier) {
     for (std::size_t i = 0; i < m.blocks.size(); ++i) {
       if (m.blocks[i].role == model::BlockRole::MovingSupport) {
         m.warnings.push_back({"moving_support_held",
-                              "block '" + m.blocks[i].id +
-                                  "' is a moving support but the analysis is not a settlement analysis: "
+                              "block " + quote_user(m.blocks[i].id) +
+                                  " is a moving support but the analysis is not a settlement analysis: "
                                   "it is held fixed",
                               at("/blocks", i) + "/role"});
       }

@@ -66,6 +66,7 @@ struct ContactInterface {
   double area = 0.0;             // m^2
   double friction = 0.0;         // Coulomb coefficient mu (dimensionless)
   bool detected = false;         // true when found by interface detection, false when given
+  int source_index = -1;         // given: position in the model file's /interfaces; detected: -1
 };
 
 /// A force and a moment on a block (kN, kN m), the force applied at `point` (m).
