@@ -86,3 +86,29 @@ TEST(Samples, HeadlineResultsMatchIndependentReferences) {
     EXPECT_TRUE(issues.empty()) << issues.front().pointer << ": " << issues.front().message;
   }
 }
+
+// Every sample with non-associative friction at the default scheme settings: a state that passes
+// the fixed-point test, never above the associative value (never below, for a settlement
+// reaction), its work balance with mu N |slip| closing, and its result valid.
+TEST(Samples, NonAssociativeConvergesOnTheSafeSide) {
+  const fs::path dir = fs::path(RBLA_SOURCE_DIR) / "samples";
+  for (const auto& [name, counts] : kExpected) {
+    SCOPED_TRACE(name);
+    const auto loaded = rbla::io::load_model_file((dir / name).string());
+    rbla::model::Model model = loaded.model;
+    const auto associative = rbla::analysis::analyse(model);
+    model.analysis.friction_model = rbla::model::FrictionModel::NonAssociative;
+    const auto result = rbla::analysis::analyse(model);
+    ASSERT_EQ(result.verdict, rbla::analysis::Verdict::Collapse) << result.verdict_text;
+    EXPECT_TRUE(result.non_associative_converged) << result.non_associative_stop;
+    if (result.base_reaction) {
+      EXPECT_GE(*result.base_reaction, *associative.base_reaction * (1.0 - 1e-7));
+    } else {
+      EXPECT_LE(*result.load_multiplier, *associative.load_multiplier * (1.0 + 1e-7));
+    }
+    EXPECT_LT(result.work.relative_error, 1e-3);
+    const nlohmann::json json = rbla::io::analysis_result_json(model, result, loaded.timings, name);
+    const auto issues = rbla::io::validate_against_schema(json, rbla::io::SchemaKind::Result);
+    EXPECT_TRUE(issues.empty()) << issues.front().pointer << ": " << issues.front().message;
+  }
+}

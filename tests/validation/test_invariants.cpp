@@ -27,22 +27,6 @@ double total_free_weight(const json& model) {
   return w;
 }
 
-/// The drawer: a block M (2 x 1 x 0.5) on a fixed base is pulled along +x under a block T
-/// (1 x 1 x 1) which a fixed stop keeps from moving along +x. The stop does not touch M.
-json drawer(const std::string& friction_model, double mu) {
-  json blocks = json::array({box_block("base", -1.0, 0.0, -0.5, 3.0, 1.0, 0.0, "fixed"),
-                             box_block("M", 0.0, 0.0, 0.0, 2.0, 1.0, 0.5),
-                             box_block("T", 0.5, 0.0, 0.5, 1.5, 1.0, 1.5),
-                             box_block("stop", 1.5, 0.0, 0.6, 2.5, 1.0, 1.5, "fixed")});
-  Case s;
-  s.mu = mu;
-  s.friction_model = friction_model;
-  s.seismic_direction = nullptr;
-  json model = finish(blocks, s);
-  model["loads"] = {{"live", json::array({{{"block", "M"}, {"force", {1.0, 0.0, 0.0}}}})}};
-  return model;
-}
-
 /// Every model the invariants run on, with a name.
 struct Named {
   std::string name;

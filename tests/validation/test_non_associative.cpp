@@ -1,0 +1,166 @@
+// The non-associative scheme (analysis/non_associative.hpp) against closed forms at the default
+// settings, and the properties it promises on every model: each step satisfies Coulomb's
+// condition (never above the associative value, never below it for a settlement reaction), the
+// reported state is compatible with its mechanism (the work balance with mu N |slip| holds), and
+// the value reported is the conservative end of the range of compatible states.
+#include "validation_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace rbla::validation {
+namespace {
+
+/// The model with the non-associative friction model and no scheme settings: rbla's defaults.
+json at_defaults(json model) {
+  model["analysis"]["friction_model"] = "non_associative";
+  model["analysis"].erase("non_associative");
+  return model;
+}
+
+/// The settling block of ClosedForms.SettlementBaseReaction: R = W (x_G - a) / (L - a).
+json settling_block(double a) {
+  json blocks = json::array({box_block("fixed", -0.5, -0.5, -0.5, a, 1.5, 0.0, "fixed"),
+                             box_block("moving", a + 1e-3, -0.5, -0.5, 4.5, 1.5, 0.0, "moving_support"),
+                             box_block("B", 0.0, 0.0, 0.0, 4.0, 1.0, 1.0)});
+  json model = model_with(blocks);
+  model["defaults"] = {{"unit_weight", 18.0}, {"friction", 0.6}};
+  model["analysis"] = {{"type", "settlement"}};
+  return model;
+}
+
+/// Largest excess of shear over mu N at any contact point of the reported state, in kN.
+double worst_friction_excess(const AnalysisResult& r, const std::vector<double>& friction) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < r.mechanism.interfaces.size(); ++i) {
+    for (const auto& p : r.mechanism.interfaces[i].points) {
+      worst = std::max(worst, std::hypot(p.shear1, p.shear2) - friction[i] * p.normal_force);
+    }
+  }
+  return worst;
+}
+
+std::vector<double> interface_friction(const json& model) {
+  const auto loaded = rbla::io::load_model_text(model.dump());
+  std::vector<double> mu;
+  for (const auto& c : loaded.model.interfaces) mu.push_back(c.friction);
+  return mu;
+}
+
+// Sliding block (alpha = mu), rocking block (b/h), column (min(b/H, mu)), settling block
+// (W (x_G - a) / (L - a)): unique states, so the non-associative value is the closed form, at
+// rbla's default scheme settings, in the planar and the 3-D formulation.
+TEST(NonAssociative, ClosedFormsAtDefaultSettings) {
+  struct Named {
+    std::string name;
+    json model;
+    double expected;
+  };
+  std::vector<Named> cases;
+  for (const std::string formulation : {"auto", "3d"}) {
+    Case s;
+    s.formulation = formulation;
+    cases.push_back({"sliding block " + formulation, single_block(2.0, 1.0, s), 0.6});
+    cases.push_back({"rocking block " + formulation, single_block(1.0, 2.0, s), 0.5});
+    cases.push_back({"rocking column " + formulation, column(4, 1.0, 4.0, s), 0.25});
+    s.mu = 0.45;
+    cases.push_back({"sliding column " + formulation, column(2, 2.0, 1.0, s), 0.45});
+    for (const double a : {1.0, 1.5}) {
+      json model = settling_block(a);
+      model["analysis"]["formulation"] = formulation;
+      cases.push_back({"settling block a=" + std::to_string(a) + " " + formulation, model,
+                       18.0 * 4.0 * (2.0 - a) / (4.0 - a)});
+    }
+  }
+  for (const auto& [name, model, expected] : cases) {
+    SCOPED_TRACE(name);
+    const auto r = run(at_defaults(model));
+    ASSERT_EQ(r.verdict, Verdict::Collapse) << r.verdict_text;
+    const double value = r.base_reaction ? *r.base_reaction : *r.load_multiplier;
+    EXPECT_LT(relative_error(value, expected), 1e-6) << value << " expected " << expected;
+    EXPECT_TRUE(r.non_associative_converged) << r.non_associative_stop;
+    EXPECT_LT(r.work.relative_error, 1e-6) << "kinematic " << r.work.kinematic_value;
+  }
+}
+
+// The drawer (validation_helpers.hpp, derivation in test_invariants.cpp): the states compatible
+// with its mechanism (M slides, T stays) have P in [mu W_M + 2 mu W_T / (1 + mu^2), P_assoc].
+// The scheme reports the conservative (lower) end and the range, both closed forms.
+TEST(NonAssociative, DrawerReportsTheConservativeEndOfItsRange) {
+  const double mu = 0.6, gamma = 18.0;
+  const double WM = gamma * 2.0 * 1.0 * 0.5, WT = gamma * 1.0;
+  const double low = mu * WM + 2.0 * mu * WT / (1.0 + mu * mu);
+  const double high = mu * WM + 2.0 * mu * WT / (1.0 - mu * mu);
+  const auto r = run(at_defaults(drawer("non_associative", mu)));
+  EXPECT_LT(relative_error(alpha_of(r), low), 1e-6) << alpha_of(r) << " expected " << low;
+  ASSERT_TRUE(r.non_associative_range.has_value());
+  EXPECT_LT(relative_error(r.non_associative_range->first, low), 1e-6);
+  EXPECT_LT(relative_error(r.non_associative_range->second, high), 1e-6);
+  EXPECT_TRUE(r.non_associative_converged);
+  EXPECT_LT(r.work.relative_error, 1e-6);
+}
+
+// Every step's value is at or below the associative one (settlement: at or above), and the
+// reported forces satisfy Coulomb's condition at every contact point: each step solves the
+// associative problem with another cost, on the same feasible set.
+TEST(NonAssociative, EveryStepSatisfiesCoulomb) {
+  struct Named {
+    std::string name;
+    json model;
+  };
+  Case s;
+  Case s30 = s;
+  s30.seismic_direction = json::array({std::cos(M_PI / 6), std::sin(M_PI / 6), 0.0});
+  const std::vector<Named> cases = {{"running-bond wall", finish(running_bond_blocks(5, 6), s)},
+                                    {"running-bond wall 30 deg", finish(running_bond_blocks(4, 4), s30)},
+                                    {"drawer", drawer("associative", 0.6)},
+                                    {"settling block", settling_block(1.0)}};
+  for (const auto& [name, model] : cases) {
+    SCOPED_TRACE(name);
+    json associative = model;
+    associative["analysis"]["friction_model"] = "associative";
+    const auto a = run(associative);
+    const auto n = run(at_defaults(model));
+    ASSERT_EQ(a.verdict, Verdict::Collapse) << a.verdict_text;
+    ASSERT_EQ(n.verdict, Verdict::Collapse) << n.verdict_text;
+    const bool settlement = a.base_reaction.has_value();
+    const double reference = settlement ? *a.base_reaction : *a.load_multiplier;
+    ASSERT_GE(n.non_associative.size(), 1u);
+    for (const auto& step : n.non_associative) {
+      if (settlement) EXPECT_GE(step.value, reference * (1.0 - 1e-7)) << "step " << step.iteration;
+      else EXPECT_LE(step.value, reference * (1.0 + 1e-7)) << "step " << step.iteration;
+    }
+    double weight = 0.0;
+    for (const auto& b : rbla::io::load_model_text(model.dump()).model.blocks) {
+      if (!b.is_support()) weight = std::max(weight, b.weight());
+    }
+    EXPECT_LE(worst_friction_excess(n, interface_friction(model)), 1e-7 * weight);
+    EXPECT_TRUE(n.non_associative_converged) << n.non_associative_stop;
+    EXPECT_LT(n.work.relative_error, 1e-3) << "the default tolerance of the fixed-point test";
+  }
+}
+
+// One step is not enough for the running-bond wall: the scheme stops at its step limit, says so
+// (not converged, a warning that names the dilatancy left), and still reports an admissible
+// state, at or below the associative value.
+TEST(NonAssociative, StoppedEarlySaysSoAndStaysAdmissible) {
+  json model = at_defaults(finish(running_bond_blocks(5, 6), Case{}));
+  model["analysis"]["non_associative"] = {{"max_iterations", 1}};
+  json associative = model;
+  associative["analysis"]["friction_model"] = "associative";
+  const auto a = run(associative);
+  const auto n = run(model);
+  ASSERT_EQ(n.verdict, Verdict::Collapse) << n.verdict_text;
+  EXPECT_FALSE(n.non_associative_converged);
+  EXPECT_NE(n.non_associative_stop.find("step limit"), std::string::npos) << n.non_associative_stop;
+  EXPECT_TRUE(std::any_of(n.warnings.begin(), n.warnings.end(),
+                          [](const auto& w) { return w.code == "non_associative_not_converged"; }));
+  EXPECT_LE(alpha_of(n), alpha_of(a) * (1.0 + 1e-7));
+}
+
+}  // namespace
+}  // namespace rbla::validation
