@@ -114,14 +114,15 @@ void check_dual_certificate(const ConicProblem& p, const rbla::conic::Solution& 
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
+  rbla::conic::CbfLimits limits;
+  limits.max_variables = kMaxDimension;
+  limits.max_constraints = kMaxDimension;
+  limits.max_nonzeros = kMaxNonzeros;
   ConicProblem problem;
   try {
-    problem = rbla::conic::read_cbf(in);
+    problem = rbla::conic::read_cbf(in, limits);
   } catch (const rbla::conic::ConicSetupError&) {
     return 0;  // not a CBF problem we read, or invalid problem data: rejected as documented
-  }
-  if (problem.A.rows() > kMaxDimension || problem.A.cols() > kMaxDimension || problem.A.nonZeros() > kMaxNonzeros) {
-    return 0;
   }
   rbla::conic::Settings settings;
   settings.time_limit_seconds = kTimeLimitSeconds;
