@@ -33,10 +33,13 @@ void run_non_associative(const model::Model& m, const Formulation& formulation,
 
   const std::vector<Vec3> forces = formulation.point_forces(solution.x);
   std::vector<double> normals = normal_forces(m, formulation, forces);
-  // A small floor keeps every cylinder with an interior (METHOD.md).
-  const double floor = 1e-9 * formulation.force_scale;
+  // A small floor keeps every cylinder with an interior (METHOD.md). It is shear capacity that
+  // needs no normal force, so it is relative to the load of the lighter block at the point: a
+  // floor relative to one scale for the whole model was larger than a very light block's weight.
+  std::vector<double> floor(normals.size());
+  for (std::size_t p = 0; p < floor.size(); ++p) floor[p] = 1e-9 * cylinder.points[p].load;
   std::vector<double> radii(normals.size());
-  for (std::size_t p = 0; p < radii.size(); ++p) radii[p] = std::max(floor, cylinder.points[p].friction * normals[p]);
+  for (std::size_t p = 0; p < radii.size(); ++p) radii[p] = std::max(floor[p], cylinder.points[p].friction * normals[p]);
 
   // Steps are solved only as accurately as the scheme can use: a tenth of the last relative
   // change of alpha, within [a tenth of the convergence tolerance, 1e-3]. The converged step
@@ -49,7 +52,12 @@ void run_non_associative(const model::Model& m, const Formulation& formulation,
   double reported_step_tol = step_tol;  // tolerance of the step that will be reported
   conic::Settings settings = solver_settings(request, options, time_left());
   settings.tol_gap_rel = step_tol;
-  settings.tol_feas = std::max(request.tol_feasibility, 0.1 * step_tol);
+  // Loose steps resolve every block's own load as well as an O(1) right-hand side is resolved
+  // (a block with its own force scale may have a right-hand side far below 1).
+  auto step_feasibility = [&](double tol) {
+    return std::max(request.tol_feasibility, 0.1 * tol * cylinder.rhs_resolution);
+  };
+  settings.tol_feas = step_feasibility(step_tol);
   conic::ConicProblem first = cylinder.problem;
   first.b = cylinder.rhs_with_radii(radii);
   const auto cylinder_start = Clock::now();
@@ -69,7 +77,7 @@ void run_non_associative(const model::Model& m, const Formulation& formulation,
     }
     cylinder_solver.settings().time_limit_seconds = std::max(time_left(), 1e-6);
     cylinder_solver.settings().tol_gap_rel = step_tol;
-    cylinder_solver.settings().tol_feas = std::max(request.tol_feasibility, 0.1 * step_tol);
+    cylinder_solver.settings().tol_feas = step_feasibility(step_tol);
     reported_step_tol = step_tol;
     const auto step_start = Clock::now();
     conic::Solution next = cylinder_solver.solve();
@@ -122,7 +130,7 @@ void run_non_associative(const model::Model& m, const Formulation& formulation,
     previous_change = value - previous;
     const double d = damping;
     for (std::size_t p = 0; p < radii.size(); ++p) {
-      radii[p] = std::max(floor, d * cylinder.points[p].friction * normals[p] + (1.0 - d) * radii[p]);
+      radii[p] = std::max(floor[p], d * cylinder.points[p].friction * normals[p] + (1.0 - d) * radii[p]);
     }
     cylinder_solver.update_b(cylinder.rhs_with_radii(radii));
     // Consecutive steps differ only in the radii: start the next one near this solution.
