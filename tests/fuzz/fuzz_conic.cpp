@@ -11,6 +11,7 @@
 // one (residuals, cones, gap recomputed here), or an infeasibility certificate that is not one.
 #include "rbla/conic/io.hpp"
 #include "rbla/conic/solver.hpp"
+#include "unit/conic/test_helpers.hpp"
 
 #include <Eigen/SparseCore>
 
@@ -45,18 +46,8 @@ constexpr double kSlack = 10.0;
 
 double inf_norm(const VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
 
-/// How far v is outside K (0 if inside): the largest -v_i over the orthant and |u| - t over the
-/// second-order cones.
-double outside(const VectorXd& v, const ConeSpec& cones) {
-  double worst = 0.0;
-  for (Eigen::Index i = 0; i < cones.num_nonneg; ++i) worst = std::max(worst, -v[i]);
-  Eigen::Index k = cones.num_nonneg;
-  for (Eigen::Index q : cones.soc_dims) {
-    worst = std::max(worst, v.segment(k + 1, q - 1).norm() - v[k]);
-    k += q;
-  }
-  return worst;
-}
+/// How far v is outside K (0 if inside), as the conic unit tests measure it.
+double outside(const VectorXd& v, const ConeSpec& cones) { return rbla::conic::testing::cone_violation(v, cones); }
 
 /// outside() relative to max(1, |v|inf).
 double cone_violation(const VectorXd& v, const ConeSpec& cones) { return outside(v, cones) / std::max(1.0, inf_norm(v)); }

@@ -4,6 +4,7 @@
 #include "analysis/limit_analysis.hpp"
 #include "io/load_model.hpp"
 #include "model/errors.hpp"
+#include "support/load_error.hpp"
 #include "support/model_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -12,7 +13,6 @@
 #include <string>
 
 using namespace rbla::testing;
-using rbla::model::ModelError;
 
 namespace {
 
@@ -23,15 +23,6 @@ json block_with_bed(const json& polygon, const std::string& unit = "m") {
   model["detection"] = {{"mode", "off"}};
   model["analysis"] = {{"type", "load_multiplier"}, {"seismic", {{"direction", {1, 0, 0}}}}};
   return model;
-}
-
-std::string load_error(const json& model) {
-  try {
-    rbla::io::load_model_text(model.dump());
-  } catch (const ModelError& error) {
-    return error.what();
-  }
-  return "";
 }
 
 const json kBed = json::array({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});

@@ -4,6 +4,7 @@
 #include "geometry/overlap.hpp"
 #include "io/load_model.hpp"
 #include "model/errors.hpp"
+#include "support/load_error.hpp"
 #include "support/model_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -15,7 +16,6 @@
 
 using namespace rbla::testing;
 using rbla::geometry::find_overlaps;
-using rbla::model::ModelError;
 
 namespace {
 
@@ -23,16 +23,6 @@ json two_blocks(json a, json b, const std::string& unit = "m") {
   json model = model_with(json::array({box_block("base", -5, -5, -1, 5, 5, 0, "fixed"), std::move(a), std::move(b)}), unit);
   model["analysis"] = {{"type", "load_multiplier"}, {"seismic", {{"direction", {1, 0, 0}}}}};
   return model;
-}
-
-/// The model-stage error for `model`, or "" when it loads.
-std::string load_error(const json& model) {
-  try {
-    rbla::io::load_model_text(model.dump());
-  } catch (const ModelError& error) {
-    return error.what();
-  }
-  return "";
 }
 
 /// Rotates every vertex of every block about the origin.

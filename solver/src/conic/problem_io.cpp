@@ -185,41 +185,43 @@ class CbfReader {
     return value;
   }
 
-  void read_var() {
-    if (n_ >= 0) throw fail("a second VAR section");
-    const auto header = fields(expect_line("VAR header"), 2, "VAR header");
-    n_ = count(header[0], "number of variables", limits_.max_variables);
-    const long long num_cones = count(header[1], "number of cones", n_);
+  /// A VAR or CON section: "SIZE COUNT", then COUNT lines "TYPE SIZE_k" that must cover SIZE
+  /// exactly; `take(type, size_k, k)` accepts a cone (false: not supported). Returns SIZE.
+  template <class Take>
+  long long read_cones(const std::string& section, const std::string& what, long long max, Take take) {
+    const auto header = fields(expect_line(section + " header"), 2, section + " header");
+    const long long size = count(header[0], "number of " + what, max);
+    const long long num_cones = count(header[1], "number of cones", size);
     long long covered = 0;
     for (long long k = 0; k < num_cones; ++k) {
-      const std::string line = expect_line("VAR cone list");
-      const auto cone = fields(line, 2, "VAR cone");
-      const long long size = count(cone[1], "cone size", n_ - covered);
-      if (cone[0] == "L+" && k == 0) {
-        p_.cones.num_nonneg = size;
-      } else if (cone[0] == "Q") {
-        p_.cones.soc_dims.push_back(size);
-      } else {
-        throw fail("VAR cone " + quoted(line) + " not supported (only one leading L+, then Q)");
-      }
-      covered += size;
+      const std::string line = expect_line(section + " cone list");
+      const auto cone = fields(line, 2, section + " cone");
+      const long long cone_size = count(cone[1], "cone size", size - covered);
+      if (!take(cone[0], cone_size, k)) throw fail(section + " cone " + quoted(line) + " not supported");
+      covered += cone_size;
     }
-    if (covered != n_) throw fail("the VAR cones cover " + std::to_string(covered) + " of " + std::to_string(n_) + " variables");
+    if (covered != size) {
+      throw fail("the " + section + " cones cover " + std::to_string(covered) + " of " + std::to_string(size) + " " + what);
+    }
+    return size;
   }
 
+  /// Variables: at most one leading L+, then Q cones.
+  void read_var() {
+    if (n_ >= 0) throw fail("a second VAR section");
+    n_ = read_cones("VAR", "variables", limits_.max_variables, [&](const std::string& type, long long size, long long k) {
+      if (type == "L+" && k == 0) p_.cones.num_nonneg = size;
+      else if (type == "Q") p_.cones.soc_dims.push_back(size);
+      else return false;
+      return true;
+    });
+  }
+
+  /// Constraints: L= only.
   void read_con() {
     if (m_ >= 0) throw fail("a second CON section");
-    const auto header = fields(expect_line("CON header"), 2, "CON header");
-    m_ = count(header[0], "number of constraints", limits_.max_constraints);
-    const long long num_cones = count(header[1], "number of cones", m_);
-    long long covered = 0;
-    for (long long k = 0; k < num_cones; ++k) {
-      const std::string line = expect_line("CON cone list");
-      const auto cone = fields(line, 2, "CON cone");
-      if (cone[0] != "L=") throw fail("CON cone " + quoted(line) + " not supported (only L=)");
-      covered += count(cone[1], "cone size", m_ - covered);
-    }
-    if (covered != m_) throw fail("the CON cones cover " + std::to_string(covered) + " of " + std::to_string(m_) + " rows");
+    m_ = read_cones("CON", "rows", limits_.max_constraints,
+                    [](const std::string& type, long long, long long) { return type == "L="; });
   }
 
   /// OBJACOORD (indices into the variables) or BCOORD (into the rows): "count", then "index value".

@@ -101,7 +101,7 @@ TEST(ConicProblemIo, CbfReaderRejectsMalformedNumbersWithTheLine) {
   EXPECT_NE(cbf_error(with("0 0 1\n", "-1 0 1\n")).find("ACOORD row -1 is out of range"), std::string::npos);
   EXPECT_NE(cbf_error(with("OBJACOORD\n2", "OBJACOORD\n-2")).find("OBJACOORD count -2"), std::string::npos);
   EXPECT_NE(cbf_error(with("2 1\nL+ 2", "2 1\nL+ 3")).find("cone size 3 is out of range"), std::string::npos);
-  EXPECT_NE(cbf_error(with("2 1\nL+ 2", "2 1\nL+ 1")).find("cover 1 of 2 variables"), std::string::npos);
+  EXPECT_NE(cbf_error(with("2 1\nL+ 2", "2 1\nL+ 1")).find("the VAR cones cover 1 of 2 variables"), std::string::npos);
   EXPECT_NE(cbf_error(with("VAR\n2 1", "VAR\n99999999999999999999 1")).find("not an integer"), std::string::npos);
   EXPECT_NE(cbf_error(lp + "VAR\n1 1\nL+ 1\n").find("a second VAR section"), std::string::npos);
   // A long field is cut in the message.
