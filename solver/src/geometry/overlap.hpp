@@ -11,12 +11,17 @@ namespace rbla::geometry {
 
 struct BlockOverlap {
   int block_a = -1, block_b = -1;  ///< block_a < block_b
-  double volume = 0.0;             ///< m^3 the two blocks have in common
+  /// m^3 the two blocks have in common; NaN when it was not computed (two non-convex blocks of
+  /// thousands of faces whose hulls overlap deeply: too many tetrahedron pairs).
+  double volume = 0.0;
   /// m: the smallest overlap of their projections over the face normals of both, an upper bound
   /// of how far one must move to free the other (exact for convex blocks meeting face to face;
   /// for a non-convex block only a bound of its convex hull's).
   double depth = 0.0;
   bool convex = true;  ///< both blocks convex
+  /// When the volume was not computed: the centroid of one block lies inside the other (an
+  /// overlap for certain), from the winding number of its surface.
+  bool centroid_inside = false;
 };
 
 /// An overlap whose volume exceeds this fraction of the smaller block is an error. 1 %: a 1 m

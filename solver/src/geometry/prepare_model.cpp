@@ -238,6 +238,22 @@ void check_overlaps(const model::Model& m, double tolerance, std::vector<InputIs
   for (const BlockOverlap& o : find_overlaps(m, tolerance)) {
     const model::Block& a = m.blocks[o.block_a];
     const model::Block& b = m.blocks[o.block_b];
+    if (std::isnan(o.volume) && o.centroid_inside) {
+      errors.push_back({"/blocks/" + std::to_string(o.block_b),
+                        "blocks '" + a.id + "' and '" + b.id + "' overlap: the centroid of one lies inside the other "
+                        "(their common volume was not computed: non-convex, " + std::to_string(a.faces.size()) + " and " +
+                            std::to_string(b.faces.size()) + " faces); blocks may touch but not share volume"});
+      continue;
+    }
+    if (std::isnan(o.volume)) {
+      warnings.push_back({"blocks_overlap_not_measured",
+                          "blocks '" + a.id + "' and '" + b.id + "' (non-convex, " + std::to_string(a.faces.size()) +
+                              " and " + std::to_string(b.faces.size()) +
+                              " faces) may overlap: their convex hulls do, and their common volume was not computed "
+                              "(too many faces); check them",
+                          "/blocks/" + std::to_string(o.block_b)});
+      continue;
+    }
     const double fraction = o.volume / std::min(a.volume, b.volume);
     const std::string what = "blocks '" + a.id + "' and '" + b.id + "' overlap: " + volume_text(o.volume, m.units) +
                              " in common (" + format(100.0 * fraction) + " % of the smaller" +
