@@ -182,6 +182,22 @@ model::Warning lateral_contrast_warning(const model::Model& m, const ForceScales
   return {"weight_contrast", message, "/blocks/" + std::to_string(loads.lateral_light)};
 }
 
+/// The per-block and per-interface force scales (analysis/force_scales.hpp) into `f` (block
+/// scales, rhs_resolution, the warning); returned for the points' scales.
+ForceScales apply_force_scales(const model::Model& m, Formulation& f) {
+  const bool associative = m.analysis.friction_model != model::FrictionModel::NonAssociative;
+  ForceScales loads =
+      force_scales(m, f.force_scale, associative ? kLateralContrastLimit : kLateralContrastLimitNonAssociative);
+  f.block_scale = loads.block;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    if (!m.blocks[b].is_support() && loads.block[b] != f.force_scale && loads.own[b] > 0.0) {
+      f.rhs_resolution = std::min(f.rhs_resolution, loads.own[b] / loads.block[b]);
+    }
+  }
+  if (loads.num_lateral_over_limit > 0) f.warnings.push_back(lateral_contrast_warning(m, loads));
+  return loads;
+}
+
 }  // namespace
 
 PlanarFrame detect_planar(const model::Model& m) {
@@ -217,17 +233,7 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
   const Scales scales = choose_scales(m);
   f.length_scale = scales.length;
   f.force_scale = scales.force;
-  const ForceScales loads = force_scales(m, scales.force,
-                                         m.analysis.friction_model == model::FrictionModel::NonAssociative
-                                             ? kLateralContrastLimitNonAssociative
-                                             : kLateralContrastLimit);
-  f.block_scale = loads.block;
-  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
-    if (!m.blocks[b].is_support() && loads.block[b] != scales.force && loads.own[b] > 0.0) {
-      f.rhs_resolution = std::min(f.rhs_resolution, loads.own[b] / loads.block[b]);
-    }
-  }
-  if (loads.num_lateral_over_limit > 0) f.warnings.push_back(lateral_contrast_warning(m, loads));
+  const ForceScales loads = apply_force_scales(m, f);
   f.settlement = m.analysis.type == model::AnalysisType::Settlement;
   f.settlement_direction = m.analysis.settlement_direction;
   f.rows_per_block = options.planar ? 3 : 6;
