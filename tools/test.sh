@@ -10,5 +10,6 @@ ctest --test-dir build --output-on-failure -j"$(nproc)" "$@"
 [ $# -eq 0 ] || exit 0
 # Memory errors and undefined behaviour the Release run cannot see: the suite under ASan+UBSan.
 tools/sanitize.sh
-# A minute of coverage-guided fuzzing of the model stage, starting from tests/fuzz/corpus.
+# 35 s each of coverage-guided fuzzing of the model stage, the whole analysis and the conic
+# solver, starting from the committed corpora (tests/fuzz/corpus*).
 tools/fuzz.sh --smoke

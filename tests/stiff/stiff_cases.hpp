@@ -33,6 +33,7 @@
 //            (Portioli & Cascini 2016; derivation in tests/validation/test_closed_forms.cpp).
 #pragma once
 
+#include "support/arch_builder.hpp"
 #include "support/model_builder.hpp"
 
 #include <nlohmann/json.hpp>
@@ -48,6 +49,8 @@
 namespace rbla::stiff {
 
 using nlohmann::json;
+using rbla::testing::ArchSpec;
+using rbla::testing::arch_blocks;
 using rbla::testing::box_block;
 using rbla::testing::running_bond_blocks;
 
@@ -379,6 +382,71 @@ inline std::vector<StiffCase> stiff_cases() {
     }
   }
 
+  // ---- Unit-weight contrasts 1e9 to 1e20 (issue 19) --------------------------------------------
+  // With one force scale for the whole model (the mean free-block weight) a block 1e9 lighter
+  // than the one it stands on fell below the solver's tolerance: alpha 0.6 (the heavy block
+  // sliding) instead of 0.5. The schema caps a unit weight at 1e12 kN/m3; contrasts beyond 1e12
+  // come from small unit weights (1e-8 kN/m3 against 1e12 for 1e20).
+  for (const Opt& base : {Opt{}, Opt{"associative", "3d"}, Opt{"non_associative", "3d"}}) {
+    for (const int e : {9, 12, 20}) {
+      const double heavy = std::min(std::pow(10.0, e), 1e12), light = heavy / std::pow(10.0, e);
+      const std::string c = "contrast_1e" + std::to_string(e) + "_";
+      const std::string weights = " kN/m3";
+      Opt o = base;
+      o.unit_weight = 1.0;
+      {
+        // The issue's case: a light 1 x 2 block on a heavy 1 x 1 one; the light block rocks.
+        json blocks = column_blocks(1, {1, 2});
+        blocks[1]["unit_weight"] = heavy;
+        blocks[2]["unit_weight"] = light;
+        out.push_back({c + "light_on_heavy" + tag(o), "unit weights " + num(heavy) + " and " + num(light) + weights,
+                       model_of(blocks, o), Expect::Collapse, column_alpha(1, {1, 2}, {heavy, light}, {0.6, 0.6}),
+                       "[column] the light top block rocks: b/h = 0.5 (the heavy one alone would slide at 0.6)"});
+      }
+      {
+        json blocks = column_blocks(1, {1, 1});
+        blocks[1]["unit_weight"] = light;
+        blocks[2]["unit_weight"] = heavy;
+        out.push_back({c + "heavy_on_light" + tag(o), "unit weights " + num(light) + " and " + num(heavy) + weights,
+                       model_of(blocks, o), Expect::Collapse, column_alpha(1, {1, 1}, {light, heavy}, {0.6, 0.6}),
+                       "[column] (b/2)/zbar, zbar the weighted centroid"});
+      }
+      {
+        Opt m = o;
+        m.mu = 2.0;
+        json blocks = column_blocks(1, {1, 1, 1});
+        blocks[1]["unit_weight"] = heavy;
+        blocks[2]["unit_weight"] = light;
+        blocks[3]["unit_weight"] = heavy;
+        out.push_back({c + "light_in_middle" + tag(m), "unit weights " + num(heavy) + ", " + num(light) + ", " + num(heavy) + weights,
+                       model_of(blocks, m), Expect::Collapse, column_alpha(1, {1, 1, 1}, {heavy, light, heavy}, {2, 2, 2}),
+                       "[column] weighted centroids"});
+      }
+    }
+    // Under the warning limits (analysis/force_scales.hpp): 1e14 associative, 1e10 non-associative.
+    const std::vector<int> lateral = base.friction_model == "associative" ? std::vector<int>{9, 12, 14} : std::vector<int>{9};
+    for (const int e : lateral) {
+      // A light 1 x 1 block beside a heavy one of the same size, both on the base; the light one's
+      // bed joint has friction 0.3, the rest 0.6: pushed away from the heavy block it slides at
+      // alpha = 0.3, whatever its weight (the heavy one alone would slide at 0.6). Side by side, no
+      // load passes from one to the other: the light block's scale lies between the two.
+      Opt o = base;
+      o.unit_weight = 1.0;
+      const double heavy = std::min(std::pow(10.0, e), 1e12), light = heavy / std::pow(10.0, e);
+      json blocks = json::array({box_block("base", -0.5, -0.5, -0.5, 2.5, 1.5, 0.0, "fixed"),
+                                 box_block("H", 0, 0, 0, 1, 1, 1), box_block("L", 1, 0, 0, 2, 1, 1)});
+      blocks[1]["unit_weight"] = heavy;
+      blocks[2]["unit_weight"] = light;
+      json model = model_of(blocks, o);
+      model["interfaces"] = json::array({{{"id", "L_bed"}, {"blocks", {"base", "L"}}, {"friction", 0.3},
+                                          {"polygon", {{1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}}}}});
+      model["detection"] = {{"mode", "merge"}};
+      out.push_back({"contrast_1e" + std::to_string(e) + "_light_beside_heavy" + tag(o),
+                     "unit weights " + num(heavy) + " and " + num(light) + " kN/m3, side by side", model,
+                     Expect::Collapse, 0.3, "[block] the light block slides on its own bed joint: mu = 0.3"});
+    }
+  }
+
   // ---- Aspect ratios to 1:1000 -----------------------------------------------------------------
   for (const Opt& o : {Opt{}, Opt{"associative", "3d"}, Opt{"non_associative"}, Opt{"non_associative", "3d"}}) {
     out.push_back({"slender_block_1_1000" + tag(o), "column 0.01 x 10 m (1:1000), one block",
@@ -662,6 +730,41 @@ inline std::vector<TwinCase> twin_cases() {
         out.push_back(*c);
       }
     }
+  }
+  // Weight contrasts past 1e12 (issue 19), against the limit of a weightless light part (alpha
+  // depends continuously on the weights: 1e-12 of a weight moves it by about that much). These
+  // twins are not scale changes: they guard the per-block scaling of the conic problem
+  // (analysis/force_scales.hpp) where one light block carries its heavy neighbours' thrust.
+  for (const std::string formulation : {"auto", "3d"}) {
+    Opt o{"associative", formulation};
+    const std::string t = formulation == "3d" ? "_3d" : "";
+    // The arch sample's shape (16 voussoirs, R 5 m, t 0.8 m): V7, at the crown, 1e12 lighter.
+    ArchSpec spec;
+    spec.voussoirs = 16;
+    spec.radius = 5.0;
+    spec.thickness = 0.8;
+    spec.depth = 1.0;
+    json arch = arch_blocks(spec);
+    json weightless = arch;
+    arch[7]["unit_weight"] = 18e-12;
+    weightless[7]["unit_weight"] = 0.0;
+    out.push_back({"arch_crown_voussoir_1e12_lighter" + t, "voussoir V7 (crown) 1e12 lighter than the others",
+                   model_of(arch, o), model_of(weightless, o), "limit: the same arch with V7 weightless"});
+    // Running bond, 6 x 8 bricks, odd courses 1e12 lighter (1e-12 against 1 kN/m3).
+    Opt w = o;
+    w.unit_weight = 1.0;
+    if (formulation == "3d") w.seismic = json::array({0.0, 1.0, 0.0});
+    json wall = running_bond_blocks(6, 8), bare = wall;
+    for (std::size_t i = 0; i < wall.size(); ++i) {
+      const std::string id = wall[i]["id"];
+      if (id[0] == 'W' && std::stoi(id.substr(1)) % 2 == 1) {
+        wall[i]["unit_weight"] = 1e-12;
+        bare[i]["unit_weight"] = 0.0;
+      }
+    }
+    out.push_back({"wall_6x8_courses_1e12_lighter" + t + (formulation == "3d" ? "_out_of_plane" : ""),
+                   "odd courses 1e12 lighter than even ones", model_of(wall, w), model_of(bare, w),
+                   "limit: the same wall with the odd courses weightless"});
   }
   {
     // A 20 x 20 wall with 1e6 contrast between courses, at 1 km, out of plane (3-D): twin at 1 m.

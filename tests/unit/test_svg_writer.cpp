@@ -400,3 +400,20 @@ TEST(SvgConvergence, SettlementValuesAreReactions) {
   EXPECT_NE(svg.find("base reaction R (kN)"), std::string::npos);
   EXPECT_EQ(xml_problem(svg), "");
 }
+
+// Found by fuzzing the analysis (tests/fuzz/regressions_analysis/settlement_flat_history.json): a
+// non-associative history that settles on one value but for an ulp (36 kN, then 36 kN plus
+// 7e-15) made the tick step smaller than the values' spacing, and the tick loop never ended
+// (2 GB and counting). Such a history is a flat line with a few ticks.
+TEST(SvgConvergence, HistoryFlatButForAnUlpHasFewTicks) {
+  AnalysisResult result = result_with_histories(2, 3);
+  result.type = rbla::model::AnalysisType::Settlement;
+  result.load_multiplier.reset();
+  result.base_reaction = 36.0;
+  result.non_associative[0].value = 36.0;
+  result.non_associative[1].value = std::nextafter(36.0, 37.0);
+  const std::string svg = rbla::io::convergence_svg(result);
+  EXPECT_EQ(xml_problem(svg), "");
+  EXPECT_LT(svg.size(), 100000u);
+  EXPECT_LE(count(svg, "stroke=\"#e4e4e4\""), 40u);  // grid lines of both panels
+}

@@ -1,5 +1,7 @@
 #include "analysis/formulation.hpp"
 
+#include "analysis/force_scales.hpp"
+#include "analysis/solve_steps.hpp"
 #include "geometry/polyhedron.hpp"
 #include "model/errors.hpp"
 
@@ -215,6 +217,42 @@ PointSpec friction_variables(const FormulationOptions& options, double mu, const
   return spec;
 }
 
+/// Blocks side by side whose loads differ beyond what one scaling of the problem resolves.
+model::Warning lateral_contrast_warning(const model::Model& m, const ForceScales& loads) {
+  const model::Block& light = m.blocks[loads.lateral_light];
+  const model::Block& heavy = m.blocks[loads.lateral_heavy];
+  const double kN = m.units.force_to_kN;
+  std::string message = "blocks '" + light.id + "' and '" + heavy.id + "' touch side by side and carry loads " +
+                        format(loads.lateral_contrast, 3) + " times apart (" +
+                        format(loads.carried[loads.lateral_light] / kN, 3) + " and " +
+                        format(loads.carried[loads.lateral_heavy] / kN, 3) + " " + m.units.force_name +
+                        "): whether '" + heavy.id + "' pushes through '" + light.id +
+                        "' is known only after the solve, and beyond a contrast of " +
+                        format(loads.lateral_limit, 3) +
+                        (m.analysis.friction_model == model::FrictionModel::NonAssociative ? " (non-associative)" : "") +
+                        " the conic problem cannot be scaled to resolve both; the answer may be wrong";
+  if (loads.num_lateral_over_limit > 1) {
+    message += " (" + std::to_string(loads.num_lateral_over_limit) + " such pairs)";
+  }
+  return {"weight_contrast", message, "/blocks/" + std::to_string(loads.lateral_light)};
+}
+
+/// The per-block and per-interface force scales (analysis/force_scales.hpp) into `f` (block
+/// scales, rhs_resolution, the warning); returned for the points' scales.
+ForceScales apply_force_scales(const model::Model& m, Formulation& f) {
+  const bool associative = m.analysis.friction_model != model::FrictionModel::NonAssociative;
+  ForceScales loads =
+      force_scales(m, f.force_scale, associative ? kLateralContrastLimit : kLateralContrastLimitNonAssociative);
+  f.block_scale = loads.block;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    if (!m.blocks[b].is_support() && loads.block[b] != f.force_scale && loads.own[b] > 0.0) {
+      f.rhs_resolution = std::min(f.rhs_resolution, loads.own[b] / loads.block[b]);
+    }
+  }
+  if (loads.num_lateral_over_limit > 0) f.warnings.push_back(lateral_contrast_warning(m, loads));
+  return loads;
+}
+
 }  // namespace
 
 PlanarFrame detect_planar(const model::Model& m) {
@@ -250,6 +288,7 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
   const Scales scales = choose_scales(m);
   f.length_scale = scales.length;
   f.force_scale = scales.force;
+  const ForceScales loads = apply_force_scales(m, f);
   f.settlement = m.analysis.type == model::AnalysisType::Settlement;
   f.settlement_direction = m.analysis.settlement_direction;
   f.rows_per_block = options.planar ? 3 : 6;
@@ -310,6 +349,8 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
       FormulationPoint point;
       point.interface_index = static_cast<int>(i);
       point.friction = contact.friction;
+      point.force_scale = loads.interface[i];
+      point.load = loads.interface_load[i];
       for (int k : corners) point.position += contact.polygon[k];
       point.position /= static_cast<double>(corners.size());
       point.corners = std::move(corners);
@@ -378,14 +419,18 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
   std::vector<Eigen::Triplet<double>> triplets;
   const double L = f.length_scale;
 
-  auto add_block_entries = [&](int block, double sign, int variable, const Vec3& force, const Vec3& position) {
+  // `unit_force` is the force of one unit of the variable, in units of its point's scale; the
+  // rows are in units of the block's scale (the moving supports' row in the reference scale).
+  auto add_block_entries = [&](int block, double sign, int variable, const Vec3& unit_force, double point_scale,
+                               const Vec3& position) {
     const int row = f.block_row[block];
-    if (row < 0 || force.isZero(0.0)) return;
+    if (row < 0 || unit_force.isZero(0.0)) return;
     const model::Block& target = m.blocks[block];
     if (target.role == model::BlockRole::MovingSupport) {
-      triplets.emplace_back(row, variable, sign * force.dot(f.settlement_direction));
+      triplets.emplace_back(row, variable, sign * unit_force.dot(f.settlement_direction) * (point_scale / f.force_scale));
       return;
     }
+    const Vec3 force = unit_force * (point_scale / f.block_scale[block]);
     const Vec3 moment = (position - target.centroid).cross(force) / L;
     if (options.planar) {
       triplets.emplace_back(row, variable, sign * force.dot(options.frame.e1));
@@ -406,8 +451,8 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
     if (spec.has_radius_row) point.radius_row = num_rows++;
     auto place = [&](const VariableSpec& variable, int index) {
       point.generators.push_back({index, variable.force});
-      add_block_entries(contact.block_b, +1.0, index, variable.force, point.position);
-      add_block_entries(contact.block_a, -1.0, index, variable.force, point.position);
+      add_block_entries(contact.block_b, +1.0, index, variable.force, point.force_scale, point.position);
+      add_block_entries(contact.block_a, -1.0, index, variable.force, point.force_scale, point.position);
       if (variable.in_radius_row) triplets.emplace_back(point.radius_row, index, 1.0);
     };
     for (const VariableSpec& variable : spec.orthant) place(variable, next_orthant++);
@@ -425,8 +470,8 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
   auto add_wrench = [&](Eigen::VectorXd& target, int block, const Vec3& force, const Vec3& moment_about_centroid) {
     const int row = f.block_row[block];
     if (row < 0 || m.blocks[block].is_support()) return;
-    const Vec3 fs = force / f.force_scale;
-    const Vec3 ms = moment_about_centroid / (f.force_scale * L);
+    const Vec3 fs = force / f.block_scale[block];
+    const Vec3 ms = moment_about_centroid / (f.block_scale[block] * L);
     if (options.planar) {
       target[row] += fs.dot(options.frame.e1);
       target[row + 1] += fs.dot(options.frame.e2);
@@ -490,7 +535,7 @@ std::vector<Vec3> Formulation::point_forces(const Eigen::VectorXd& x) const {
   std::vector<Vec3> forces(points.size(), Vec3::Zero());
   for (std::size_t p = 0; p < points.size(); ++p) {
     for (const Generator& g : points[p].generators) forces[p] += x[g.variable] * g.force;
-    forces[p] *= force_scale;
+    forces[p] *= points[p].force_scale;
   }
   return forces;
 }
@@ -498,7 +543,7 @@ std::vector<Vec3> Formulation::point_forces(const Eigen::VectorXd& x) const {
 Eigen::VectorXd Formulation::rhs_with_radii(const std::vector<double>& radii_kN) const {
   Eigen::VectorXd b = problem.b;
   for (std::size_t p = 0; p < points.size(); ++p) {
-    if (points[p].radius_row >= 0) b[points[p].radius_row] = radii_kN[p] / force_scale;
+    if (points[p].radius_row >= 0) b[points[p].radius_row] = radii_kN[p] / points[p].force_scale;
   }
   return b;
 }

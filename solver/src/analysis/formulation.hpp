@@ -40,7 +40,8 @@ enum class FrictionSet {
   Cylinder,  ///< non-associative step: N >= 0 and ||T|| <= r, r fixed (Gilbert et al. 2006)
 };
 
-/// Force basis of one variable: the force it exerts on block_b per unit value (kN / force scale).
+/// Force basis of one variable: the force it exerts on block_b per unit value, in units of its
+/// point's force_scale.
 struct Generator {
   int variable = 0;
   Vec3 force = Vec3::Zero();
@@ -54,6 +55,8 @@ struct FormulationPoint {
   std::vector<int> corners;  ///< indices into the interface polygon represented by this point
   Vec3 position = Vec3::Zero();
   double friction = 0.0;
+  double force_scale = 1.0;  ///< kN per unit of this point's variables (its interface's scale)
+  double load = 1.0;         ///< kN: the smaller load carried by its interface's blocks (ForceScales::interface_load)
   std::vector<Generator> generators;
   int radius_row = -1;  ///< cylinder: the row fixing the radius (sum of tangential budget = r)
 };
@@ -71,12 +74,21 @@ struct Formulation {
   conic::ConicProblem problem;
   FormulationOptions options;
   double length_scale = 1.0;  ///< m: moment rows are divided by it
-  double force_scale = 1.0;   ///< kN: force variables and rows are in units of it
+  /// kN: the mean free-block weight. The settlement row and R are in units of it; block rows and
+  /// contact variables have their own scales (block_scale, FormulationPoint::force_scale), equal
+  /// to it unless the model's loads span more than kForceScaleBand (analysis/force_scales.hpp).
+  double force_scale = 1.0;
   int multiplier_variable = 0;  ///< alpha (the copy the objective sees), or R / force_scale under settlement
   int rows_per_block = 6;
   /// First equilibrium row of each block; -1 for fixed supports. Under settlement all moving
   /// supports share one row (their summed load along the settlement direction).
   std::vector<int> block_row;
+  /// kN, per block: its force rows are divided by it, its moment rows by it times length_scale.
+  std::vector<double> block_scale;
+  /// The smallest own load (weight and point loads) of a block with a scale other than
+  /// force_scale, relative to that scale; 1 when every block uses force_scale. A solve whose
+  /// feasibility tolerance is loosened should loosen it by no more than this times the usual.
+  double rhs_resolution = 1.0;
   std::vector<FormulationPoint> points;
   bool settlement = false;
   Vec3 settlement_direction = Vec3::Zero();
@@ -84,6 +96,8 @@ struct Formulation {
   int first_radius_row = 0;
   /// Rows alpha_a = alpha_b tying the per-block copies of the load multiplier (last rows).
   int num_tie_rows = 0;
+  /// What the formulation could not do well (weight contrasts beyond what scaling resolves).
+  std::vector<model::Warning> warnings;
 
   /// Forces at every formulation point (kN, global frame) from a primal solution x.
   std::vector<Vec3> point_forces(const Eigen::VectorXd& x) const;
@@ -92,8 +106,9 @@ struct Formulation {
 };
 
 /// Builds the conic problem. Non-dimensionalised (METHOD.md, "Units and scale"): forces in units
-/// of the mean free-block weight, moments additionally divided by the mean block size, so mm and
-/// m models, N and kN, solve identically. Throws model::ModelError for requests the scene cannot
+/// of the mean free-block weight (or, for blocks and interfaces whose carried loads lie far from
+/// it, of their own loads: analysis/force_scales.hpp), moments additionally divided by the mean
+/// block size, so mm and m models, N and kN, solve identically. Throws model::ModelError for requests the scene cannot
 /// meet (planar forced on a 3-D scene).
 Formulation build_formulation(const model::Model& model, const FormulationOptions& options);
 

@@ -329,6 +329,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
 
   const FormulationOptions formulation_options = choose_formulation(m, result);
   const Formulation formulation = build_formulation(m, formulation_options);
+  result.warnings.insert(result.warnings.end(), formulation.warnings.begin(), formulation.warnings.end());
   record_size(formulation, result);
   result.assemble_seconds = seconds_since(deadline.start);
   if (options.problem_ready) options.problem_ready(formulation.problem);

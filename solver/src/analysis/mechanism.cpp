@@ -11,14 +11,16 @@ std::vector<BlockMotion> block_velocities(const model::Model& m, const Formulati
     const int row = f.block_row[b];
     if (row < 0) continue;
     BlockMotion& motion = motions[b];
+    // Rows divided by the block's scale have multipliers multiplied by it: back to common units.
+    const double unscale = f.force_scale / f.block_scale[b];
     if (m.blocks[b].role == model::BlockRole::MovingSupport) {
       motion.translation = -y[row] * f.settlement_direction;
     } else if (f.options.planar) {
-      motion.translation = -(y[row] * f.options.frame.e1 + y[row + 1] * f.options.frame.e2);
-      motion.rotation = -y[row + 2] / f.length_scale * f.options.frame.normal;
+      motion.translation = -unscale * (y[row] * f.options.frame.e1 + y[row + 1] * f.options.frame.e2);
+      motion.rotation = -unscale * y[row + 2] / f.length_scale * f.options.frame.normal;
     } else {
-      motion.translation = -y.segment<3>(row);
-      motion.rotation = -y.segment<3>(row + 3) / f.length_scale;
+      motion.translation = -unscale * y.segment<3>(row);
+      motion.rotation = -unscale * y.segment<3>(row + 3) / f.length_scale;
     }
   }
   return motions;

@@ -53,14 +53,16 @@ std::vector<double> slip_shift(const model::Model& m, const Formulation& f, cons
   return shift;
 }
 
-/// The associative cost plus factor * s_k on each point's normal force (N_k = sum_j (g_j . n) x_j).
+/// The associative cost plus factor * s_k on each point's normal force, in units of the model's
+/// force scale (N_k = sum_j (g_j . n) x_j times the point's own scale over the model's).
 Eigen::VectorXd shifted_cost(const model::Model& m, const Formulation& f, const Eigen::VectorXd& cost,
                              const Eigen::VectorXd& shift, double factor) {
   Eigen::VectorXd c = cost;
   for (std::size_t p = 0; p < f.points.size(); ++p) {
     if (shift[p] == 0.0) continue;
     const Vec3& n = m.interfaces[f.points[p].interface_index].normal;
-    for (const Generator& g : f.points[p].generators) c[g.variable] += factor * shift[p] * g.force.dot(n);
+    const double units = f.points[p].force_scale / f.force_scale;
+    for (const Generator& g : f.points[p].generators) c[g.variable] += factor * shift[p] * units * g.force.dot(n);
   }
   return c;
 }
@@ -227,7 +229,9 @@ class ShiftScheme {
     const conic::Settings saved = s;
     s.tol_gap_rel = std::max(gap, request_.tol_relative_gap);
     s.tol_gap_abs = std::max(gap, saved.tol_gap_abs);
-    s.tol_feas = std::max(gap, saved.tol_feas);
+    // A loose step resolves every block's own load as well as an O(1) right-hand side is
+    // resolved: a block with its own force scale may have a right-hand side far below 1.
+    s.tol_feas = std::max(gap * f_.rhs_resolution, saved.tol_feas);
     s.time_limit_seconds = std::max(deadline_.left(), 1e-6);
     s.snapshot_gap_rel = request_.non_associative_warm_start ? kSnapshotGap : 0.0;
     s.warm_start_weight = kWarmStartWeight;
@@ -291,10 +295,12 @@ class ShiftScheme {
   bool cylinder_confirms(const conic::Solution& state, Eigen::VectorXd& mechanism_y) {
     if (deadline_.left() <= 0.0) return false;
     const std::vector<double> normals = normal_forces(m_, f_, f_.point_forces(state.x));
-    // A small floor keeps every cylinder with an interior.
+    // A small floor keeps every cylinder with an interior. It is shear capacity that needs no
+    // normal force, so it is relative to the load of the lighter block at the point: one floor for
+    // the whole model would be more than a very light block's weight.
     std::vector<double> radii(normals.size());
     for (std::size_t p = 0; p < radii.size(); ++p) {
-      radii[p] = std::max(1e-9 * f_.force_scale, f_.points[p].friction * normals[p]);
+      radii[p] = std::max(1e-9 * f_.points[p].load, f_.points[p].friction * normals[p]);
     }
     const auto start = Clock::now();
     if (!cylinder_solver_) {

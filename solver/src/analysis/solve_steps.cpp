@@ -54,12 +54,13 @@ double equilibrium_residual(const Formulation& f, const Eigen::VectorXd& x) {
   for (std::size_t b = 0; b < f.block_row.size(); ++b) {
     const int row = f.block_row[b];
     if (row < 0) continue;
+    const double scale = f.block_scale[b];  // the reference for the moving supports' row
     const int force_rows = f.rows_per_block == 6 ? 3 : 2;
     for (int k = 0; k < force_rows && row + k < f.first_radius_row; ++k) {
-      worst = std::max(worst, std::abs(r[row + k]));
+      worst = std::max(worst, std::abs(r[row + k]) * scale);
     }
   }
-  return worst * f.force_scale;
+  return worst;
 }
 
 }  // namespace

@@ -1,6 +1,10 @@
 // CBF (Conic Benchmark Format v3, Friberg 2016, https://cblib.zib.de/doc/format3.pdf) and
 // free-format MPS writers; a CBF reader for the subset written here.
 
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <map>
@@ -75,120 +79,203 @@ void write_cbf(const ConicProblem& problem, const std::string& path) {
   if (!out) throw ConicSetupError("write to '" + path + "' failed");
 }
 
-ConicProblem read_cbf(std::istream& in) {
-  auto fail = [](const std::string& what) -> ConicSetupError {
-    return ConicSetupError("read_cbf: " + what);
-  };
-  // Keywords followed by their data; '#' starts a comment line.
-  auto next_line = [&in](std::string& line) {
-    while (std::getline(in, line)) {
+namespace {
+
+/// The CBF subset read_cbf accepts, one section at a time. Every count and index is checked as
+/// it is read (a bad file is a ConicSetupError naming the line, never another exception), and
+/// nothing is allocated for a declared size before it has been checked against the limits.
+class CbfReader {
+ public:
+  CbfReader(std::istream& in, const CbfLimits& limits) : in_(in), limits_(limits) {}
+
+  ConicProblem read() {
+    std::string line;
+    while (next_line(line)) {
+      if (line == "VER") {
+        if (integer(expect_line("version"), "version") > 3) throw fail("unsupported CBF version");
+      } else if (line == "OBJSENSE") {
+        const std::string sense = expect_line("OBJSENSE value");
+        if (sense != "MIN" && sense != "MAX") throw fail("unknown OBJSENSE " + quoted(sense));
+        sense_ = sense == "MAX" ? -1.0 : 1.0;
+      } else if (line == "VAR") {
+        read_var();
+      } else if (line == "CON") {
+        read_con();
+      } else if (line == "OBJACOORD" || line == "BCOORD") {
+        read_vector(line == "OBJACOORD" ? c_entries_ : b_entries_, line);
+      } else if (line == "ACOORD") {
+        read_matrix();
+      } else if (line == "OBJBCOORD") {
+        if (number(expect_line("OBJBCOORD value"), "OBJBCOORD") != 0.0)
+          throw fail("a constant objective term is not supported");
+      } else {
+        throw fail("unsupported keyword " + quoted(line));
+      }
+    }
+    return assemble();
+  }
+
+ private:
+  /// A field of the file as messages show it: at most 40 bytes, printable ASCII only.
+  static std::string quoted(const std::string& text) {
+    std::string out = "'";
+    for (std::size_t k = 0; k < text.size() && k < 40; ++k) {
+      const unsigned char c = static_cast<unsigned char>(text[k]);
+      out += c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?';
+    }
+    return out + (text.size() > 40 ? "...'" : "'");
+  }
+
+  ConicSetupError fail(const std::string& what) const {
+    return ConicSetupError("read_cbf: line " + std::to_string(line_number_) + ": " + what);
+  }
+
+  /// The next line that is neither blank nor a comment ('#'), trimmed.
+  bool next_line(std::string& line) {
+    while (std::getline(in_, line)) {
+      ++line_number_;
       const auto first = line.find_first_not_of(" \t\r");
       if (first == std::string::npos || line[first] == '#') continue;
-      line = line.substr(first);
-      while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+      const auto last = line.find_last_not_of(" \t\r");
+      line = line.substr(first, last - first + 1);
       return true;
     }
     return false;
-  };
-  ConicProblem p;
-  Eigen::Index n = -1, m = 0;
-  double sense = 1.0;
-  std::vector<Eigen::Triplet<double>> triplets;
-  std::vector<std::pair<Eigen::Index, double>> c_entries, b_entries;
-  std::string line;
-  while (next_line(line)) {
-    if (line == "VER") {
-      if (!next_line(line)) throw fail("missing version");
-      if (std::stoi(line) > 3) throw fail("unsupported CBF version " + line);
-    } else if (line == "OBJSENSE") {
-      if (!next_line(line)) throw fail("missing OBJSENSE value");
-      if (line == "MAX")
-        sense = -1.0;
-      else if (line != "MIN")
-        throw fail("unknown OBJSENSE " + line);
-    } else if (line == "VAR") {
-      if (!next_line(line)) throw fail("missing VAR header");
-      std::istringstream header(line);
-      std::size_t count = 0;
-      header >> n >> count;
-      bool in_socs = false;
-      for (std::size_t k = 0; k < count; ++k) {
-        if (!next_line(line)) throw fail("truncated VAR section");
-        std::istringstream cone(line);
-        std::string type;
-        Eigen::Index size = 0;
-        cone >> type >> size;
-        if (type == "L+" && !in_socs && p.cones.num_nonneg == 0) {
-          p.cones.num_nonneg = size;
-        } else if (type == "Q") {
-          p.cones.soc_dims.push_back(size);
-          in_socs = true;
-        } else {
-          throw fail("VAR cone '" + line + "' not supported (only one leading L+, then Q)");
-        }
-      }
-    } else if (line == "CON") {
-      if (!next_line(line)) throw fail("missing CON header");
-      std::istringstream header(line);
-      std::size_t count = 0;
-      header >> m >> count;
-      for (std::size_t k = 0; k < count; ++k) {
-        if (!next_line(line)) throw fail("truncated CON section");
-        if (line.rfind("L=", 0) != 0) throw fail("CON cone '" + line + "' not supported (only L=)");
-      }
-    } else if (line == "OBJACOORD" || line == "BCOORD") {
-      auto& entries = line == "OBJACOORD" ? c_entries : b_entries;
-      if (!next_line(line)) throw fail("missing count");
-      const long count = std::stol(line);
-      for (long k = 0; k < count; ++k) {
-        if (!next_line(line)) throw fail("truncated coordinate list");
-        std::istringstream entry(line);
-        Eigen::Index i = 0;
-        double v = 0;
-        entry >> i >> v;
-        entries.push_back({i, v});
-      }
-    } else if (line == "ACOORD") {
-      if (!next_line(line)) throw fail("missing ACOORD count");
-      const long count = std::stol(line);
-      for (long k = 0; k < count; ++k) {
-        if (!next_line(line)) throw fail("truncated ACOORD");
-        std::istringstream entry(line);
-        Eigen::Index i = 0, j = 0;
-        double v = 0;
-        entry >> i >> j >> v;
-        triplets.emplace_back(i, j, v);
-      }
-    } else if (line == "OBJBCOORD") {
-      if (!next_line(line)) throw fail("missing OBJBCOORD value");
-      if (std::stod(line) != 0.0) throw fail("a constant objective term is not supported");
-    } else {
-      throw fail("unsupported keyword '" + line + "'");
+  }
+
+  std::string expect_line(const std::string& what) {
+    std::string line;
+    if (!next_line(line)) throw fail("the file ends before the " + what);
+    return line;
+  }
+
+  /// Whitespace-separated fields of a line; exactly `count` of them.
+  std::vector<std::string> fields(const std::string& line, std::size_t count, const std::string& what) {
+    std::istringstream stream(line);
+    std::vector<std::string> out;
+    std::string field;
+    while (stream >> field) out.push_back(field);
+    if (out.size() != count) throw fail(what + ": expected " + std::to_string(count) + " fields in " + quoted(line));
+    return out;
+  }
+
+  long long integer(const std::string& text, const std::string& what) const {
+    errno = 0;
+    char* end = nullptr;
+    const long long value = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno == ERANGE) throw fail(what + ": " + quoted(text) + " is not an integer");
+    return value;
+  }
+
+  long long count(const std::string& text, const std::string& what, long long max) const {
+    const long long value = integer(text, what);
+    if (value < 0 || value > max) {
+      throw fail(what + " " + std::to_string(value) + " is out of range [0, " + std::to_string(max) + "]");
+    }
+    return value;
+  }
+
+  double number(const std::string& text, const std::string& what) const {
+    errno = 0;
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
+      throw fail(what + ": " + quoted(text) + " is not a finite number");
+    }
+    return value;
+  }
+
+  /// A VAR or CON section: "SIZE COUNT", then COUNT lines "TYPE SIZE_k" that must cover SIZE
+  /// exactly; `take(type, size_k, k)` accepts a cone (false: not supported). Returns SIZE.
+  template <class Take>
+  long long read_cones(const std::string& section, const std::string& what, long long max, Take take) {
+    const auto header = fields(expect_line(section + " header"), 2, section + " header");
+    const long long size = count(header[0], "number of " + what, max);
+    const long long num_cones = count(header[1], "number of cones", size);
+    long long covered = 0;
+    for (long long k = 0; k < num_cones; ++k) {
+      const std::string line = expect_line(section + " cone list");
+      const auto cone = fields(line, 2, section + " cone");
+      const long long cone_size = count(cone[1], "cone size", size - covered);
+      if (!take(cone[0], cone_size, k)) throw fail(section + " cone " + quoted(line) + " not supported");
+      covered += cone_size;
+    }
+    if (covered != size) {
+      throw fail("the " + section + " cones cover " + std::to_string(covered) + " of " + std::to_string(size) + " " + what);
+    }
+    return size;
+  }
+
+  /// Variables: at most one leading L+, then Q cones.
+  void read_var() {
+    if (n_ >= 0) throw fail("a second VAR section");
+    n_ = read_cones("VAR", "variables", limits_.max_variables, [&](const std::string& type, long long size, long long k) {
+      if (type == "L+" && k == 0) p_.cones.num_nonneg = size;
+      else if (type == "Q") p_.cones.soc_dims.push_back(size);
+      else return false;
+      return true;
+    });
+  }
+
+  /// Constraints: L= only.
+  void read_con() {
+    if (m_ >= 0) throw fail("a second CON section");
+    m_ = read_cones("CON", "rows", limits_.max_constraints,
+                    [](const std::string& type, long long, long long) { return type == "L="; });
+  }
+
+  /// OBJACOORD (indices into the variables) or BCOORD (into the rows): "count", then "index value".
+  void read_vector(std::vector<std::pair<Eigen::Index, double>>& entries, const std::string& keyword) {
+    const bool objective = keyword == "OBJACOORD";
+    const long long size = objective ? n_ : m_;
+    if (size < 0) throw fail(keyword + " before " + (objective ? "VAR" : "CON"));
+    const long long num = count(expect_line(keyword + " count"), keyword + " count", limits_.max_nonzeros);
+    for (long long k = 0; k < num; ++k) {
+      const auto entry = fields(expect_line(keyword + " entries"), 2, keyword + " entry");
+      const long long index = count(entry[0], keyword + " index", size - 1);
+      entries.emplace_back(index, number(entry[1], keyword + " value"));
     }
   }
-  if (n < 0) throw fail("no VAR section");
-  p.A.resize(m, n);
-  for (const auto& t : triplets) {
-    if (t.row() < 0 || t.row() >= m || t.col() < 0 || t.col() >= n)
-      throw fail("ACOORD index out of range");
+
+  void read_matrix() {
+    if (n_ < 0 || m_ < 0) throw fail("ACOORD before VAR and CON");
+    const long long num = count(expect_line("ACOORD count"), "ACOORD count", limits_.max_nonzeros - static_cast<long long>(triplets_.size()));
+    for (long long k = 0; k < num; ++k) {
+      const auto entry = fields(expect_line("ACOORD entries"), 3, "ACOORD entry");
+      const long long row = count(entry[0], "ACOORD row", m_ - 1);
+      const long long col = count(entry[1], "ACOORD column", n_ - 1);
+      triplets_.emplace_back(row, col, number(entry[2], "ACOORD value"));
+    }
   }
-  p.A.setFromTriplets(triplets.begin(), triplets.end());
-  p.A.makeCompressed();
-  p.b = Eigen::VectorXd::Zero(m);
-  p.c = Eigen::VectorXd::Zero(n);
-  for (const auto& [i, v] : b_entries) {
-    if (i < 0 || i >= m) throw fail("BCOORD index out of range");
-    p.b[i] -= v;  // A x + b_cbf = 0  ⇔  A x = −b_cbf
+
+  ConicProblem assemble() {
+    if (n_ < 0) throw fail("no VAR section");
+    const Eigen::Index m = std::max<long long>(m_, 0);
+    p_.A.resize(m, n_);
+    p_.A.setFromTriplets(triplets_.begin(), triplets_.end());
+    p_.A.makeCompressed();
+    p_.b = Eigen::VectorXd::Zero(m);
+    p_.c = Eigen::VectorXd::Zero(n_);
+    for (const auto& [i, v] : b_entries_) p_.b[i] -= v;  // A x + b_cbf = 0  ⇔  A x = −b_cbf
+    for (const auto& [j, v] : c_entries_) p_.c[j] += sense_ * v;
+    const auto messages = p_.validate();
+    if (!messages.empty()) throw ConicSetupError::from_messages("read_cbf: invalid problem", messages);
+    return std::move(p_);
   }
-  for (const auto& [j, v] : c_entries) {
-    if (j < 0 || j >= n) throw fail("OBJACOORD index out of range");
-    p.c[j] += sense * v;
-  }
-  const auto messages = p.validate();
-  if (!messages.empty())
-    throw ConicSetupError::from_messages("read_cbf: invalid problem", messages);
-  return p;
-}
+
+  std::istream& in_;
+  CbfLimits limits_;
+  long line_number_ = 0;
+  ConicProblem p_;
+  long long n_ = -1, m_ = -1;
+  double sense_ = 1.0;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<std::pair<Eigen::Index, double>> c_entries_, b_entries_;
+};
+
+}  // namespace
+
+ConicProblem read_cbf(std::istream& in, const CbfLimits& limits) { return CbfReader(in, limits).read(); }
 
 ConicProblem read_cbf_file(const std::string& path) {
   std::ifstream in(path);

@@ -1,6 +1,8 @@
 #include "geometry/prepare_model.hpp"
 
+#include "geometry/overlap.hpp"
 #include "geometry/polyhedron.hpp"
+#include "geometry/surface_distance.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -203,6 +205,82 @@ void prepare_given_interface(model::ContactInterface& contact, std::size_t index
   contact.centroid = face.centroid;
 }
 
+/// A given interface must lie on a face of each of its two blocks: every corner, and its
+/// centroid (which catches a polygon across a block whose corners lie on its edges), within the
+/// distance tolerance of both surfaces. A contact elsewhere puts forces where no block is.
+void check_given_interface_on_blocks(const model::ContactInterface& contact, std::size_t index, const model::Model& m,
+                                     double tolerance, std::vector<InputIssue>& errors) {
+  std::vector<Vec3> points = contact.polygon;
+  points.push_back(contact.centroid);
+  for (const int b : {contact.block_a, contact.block_b}) {
+    double worst = 0.0;
+    std::size_t worst_point = 0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const double d = distance_to_surface(m.blocks[b], points[k]);
+      if (d > worst) {
+        worst = d;
+        worst_point = k;
+      }
+    }
+    if (worst <= tolerance) continue;
+    const std::string where = worst_point + 1 == points.size() ? "its centroid" : "its corner " + std::to_string(worst_point);
+    errors.push_back({"/interfaces/" + std::to_string(index) + "/polygon",
+                      "interface '" + contact.id + "' does not lie on block '" + m.blocks[b].id + "': " + where + " is " +
+                          length_text(worst, m.units) + " from the block's nearest face (the distance tolerance is " +
+                          length_text(tolerance, m.units) + ")"});
+  }
+}
+
+std::string volume_text(double cubic_metres, const model::Units& units) {
+  return format(cubic_metres / std::pow(units.length_to_m, 3)) + " " + units.length_name + "3";
+}
+
+/// Blocks occupying the same space: an error above kOverlapVolumeFraction of the smaller block;
+/// smaller overlaps deeper than the tolerance are one warning (the first pair and a count).
+void check_overlaps(const model::Model& m, double tolerance, std::vector<InputIssue>& errors,
+                    std::vector<model::Warning>& warnings) {
+  int small = 0;
+  std::string first_small;
+  for (const BlockOverlap& o : find_overlaps(m, tolerance)) {
+    const model::Block& a = m.blocks[o.block_a];
+    const model::Block& b = m.blocks[o.block_b];
+    if (std::isnan(o.volume) && o.centroid_inside) {
+      errors.push_back({"/blocks/" + std::to_string(o.block_b),
+                        "blocks '" + a.id + "' and '" + b.id + "' overlap: the centroid of one lies inside the other "
+                        "(their common volume was not computed: non-convex, " + std::to_string(a.faces.size()) + " and " +
+                            std::to_string(b.faces.size()) + " faces); blocks may touch but not share volume"});
+      continue;
+    }
+    if (std::isnan(o.volume)) {
+      warnings.push_back({"blocks_overlap_not_measured",
+                          "blocks '" + a.id + "' and '" + b.id + "' (non-convex, " + std::to_string(a.faces.size()) +
+                              " and " + std::to_string(b.faces.size()) +
+                              " faces) may overlap: their convex hulls do, and their common volume was not computed "
+                              "(too many faces); check them",
+                          "/blocks/" + std::to_string(o.block_b)});
+      continue;
+    }
+    const double fraction = o.volume / std::min(a.volume, b.volume);
+    const std::string what = "blocks '" + a.id + "' and '" + b.id + "' overlap: " + volume_text(o.volume, m.units) +
+                             " in common (" + format(100.0 * fraction) + " % of the smaller" +
+                             (o.convex ? ", up to " + length_text(o.depth, m.units) + " deep)" : ")");
+    if (fraction > kOverlapVolumeFraction) {
+      errors.push_back({"/blocks/" + std::to_string(o.block_b),
+                        what + "; blocks may touch but not share volume (check for duplicated or misplaced blocks)"});
+    } else if (small++ == 0) {
+      first_small = what;
+    }
+  }
+  if (small > 0) {
+    warnings.push_back({"blocks_overlap",
+                        first_small + (small > 1 ? " (and " + std::to_string(small - 1) + " more pairs)" : "") +
+                            ": more than the distance tolerance (" + length_text(tolerance, m.units) +
+                            ") accepts at a joint but under " + format(100.0 * kOverlapVolumeFraction) +
+                            " % of a block, accepted as a CAD imperfection; a contact across it may be missed",
+                        ""});
+  }
+}
+
 }  // namespace
 
 PrepareReport prepare_model(model::Model& m) {
@@ -223,6 +301,8 @@ PrepareReport prepare_model(model::Model& m) {
     prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings);
   }
   if (!errors.empty()) throw model::ModelError(errors);
+  check_overlaps(m, tolerance, errors, m.warnings);
+  if (!errors.empty()) throw model::ModelError(errors);
 
   // Loads given without a point act at the centroid, known only now.
   for (auto* loads : {&m.dead_loads, &m.live_loads}) {
@@ -242,6 +322,7 @@ PrepareReport prepare_model(model::Model& m) {
                             interface_pointer(contact, i)});
       continue;
     }
+    if (!contact.polygon.empty() && contact.area > 0.0) check_given_interface_on_blocks(contact, i, m, tolerance, errors);
     kept.push_back(contact);
   }
   if (!errors.empty()) throw model::ModelError(errors);

@@ -581,7 +581,9 @@ struct Range {
 // Ticks at 1, 2 or 5 times a power of ten, about `count` of them, with the range widened to them.
 std::vector<double> nice_ticks(Range& range, int count) {
   double span = range.hi - range.lo;
-  if (!(span > 0.0)) {
+  // A span within rounding of the values (a converged sequence: 36 kN, then 36 kN plus one ulp)
+  // is drawn as a flat line: ticks finer than the values' spacing cannot be stepped through.
+  if (!(span > 1e-9 * std::max(std::abs(range.lo), std::abs(range.hi)))) {
     const double pad = range.lo != 0.0 ? 0.1 * std::abs(range.lo) : 1.0;
     range.lo -= pad;
     range.hi += pad;
@@ -594,7 +596,13 @@ std::vector<double> nice_ticks(Range& range, int count) {
   range.lo = std::floor(range.lo / step + 1e-9) * step;
   range.hi = std::ceil(range.hi / step - 1e-9) * step;
   std::vector<double> ticks;
-  for (double t = range.lo; t <= range.hi + 0.5 * step; t += step) ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+  const double steps = (range.hi - range.lo) / step;  // about `count`; not finite only for absurd ranges
+  if (!(std::isfinite(steps) && steps < 1000.0)) return {range.lo, range.hi};
+  const long num_steps = std::lround(steps);
+  for (long k = 0; k <= num_steps; ++k) {
+    const double t = range.lo + static_cast<double>(k) * step;
+    ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+  }
   return ticks;
 }
 
