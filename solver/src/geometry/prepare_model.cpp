@@ -1,6 +1,8 @@
 #include "geometry/prepare_model.hpp"
 
+#include "geometry/face_patches.hpp"
 #include "geometry/polyhedron.hpp"
+#include "geometry/warped_faces.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -65,7 +67,8 @@ void first_crossing(const std::vector<Vec3>& corners, const Vec3& normal, int& f
 }
 
 void prepare_block(model::Block& block, std::size_t index, double model_tolerance, const model::Units& units,
-                   std::vector<InputIssue>& errors, std::vector<model::Warning>& warnings) {
+                   std::vector<InputIssue>& errors, std::vector<model::Warning>& warnings,
+                   std::vector<WarpedFace>& warped) {
   const std::string pointer = "/blocks/" + std::to_string(index);
   const std::string name = "block '" + block.id + "'";
   Vec3 lo = block.vertices[0], hi = block.vertices[0];
@@ -110,11 +113,8 @@ void prepare_block(model::Block& block, std::size_t index, double model_toleranc
       }
     }
     if (face.max_plane_deviation > std::max(model_tolerance, 1e-6 * diagonal)) {
-      warnings.push_back({"non_planar_face",
-                          name + ": face " + std::to_string(f) + " deviates from its plane by " +
-                              length_text(face.max_plane_deviation, units) +
-                              " (more than the distance tolerance); contacts on it are approximate",
-                          face_pointer});
+      warped.push_back({static_cast<int>(index), static_cast<int>(f), face.max_plane_deviation,
+                        polygon_diameter(block.vertices, block.faces[f])});
     }
   }
   if (!faces_ok) return;
@@ -213,10 +213,12 @@ PrepareReport prepare_model(model::Model& m) {
                                 ", more than a tenth of the model's size (" +
                                 length_text(m.bounding_box().diagonal(), m.units) + " across)");
   }
+  std::vector<WarpedFace> warped;
   for (std::size_t i = 0; i < m.blocks.size(); ++i) {
-    prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings);
+    prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings, warped);
   }
   if (!errors.empty()) throw model::ModelError(errors);
+  warn_warped_faces(warped, m);
 
   // Loads given without a point act at the centroid, known only now.
   for (auto* loads : {&m.dead_loads, &m.live_loads}) {
@@ -250,7 +252,11 @@ PrepareReport prepare_model(model::Model& m) {
     for (const auto& contact : m.interfaces) {
       covered.emplace_back(std::min(contact.block_a, contact.block_b), std::max(contact.block_a, contact.block_b));
     }
-    std::vector<model::ContactInterface> found = detect_interfaces(m, tolerance, m.detection, covered, &report.detection);
+    DetectionOutcome outcome = detect_interfaces(m, covered);
+    std::vector<model::ContactInterface>& found = outcome.interfaces;
+    m.near_misses = std::move(outcome.near_misses);
+    m.detection_summary = outcome.summary;
+    report.detection = outcome.summary;
     std::set<std::string> used_ids;
     for (const auto& contact : m.interfaces) used_ids.insert(contact.id);
     std::size_t next = 0;

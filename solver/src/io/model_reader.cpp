@@ -363,10 +363,12 @@ model::Model parse_model(const std::string& text) {
     m.detection.mode = mode == "off"     ? model::DetectionMode::Off
                        : mode == "merge" ? model::DetectionMode::Merge
                                          : model::DetectionMode::Auto;
-    m.detection.relative_tolerance = d.value("relative_tolerance", m.detection.relative_tolerance);
+    m.detection.joint_tolerance = d.value("joint_tolerance", m.detection.joint_tolerance);
+    if (d.contains("relative_tolerance")) m.detection.relative_tolerance = d["relative_tolerance"].get<double>();
     if (d.contains("distance_tolerance")) m.detection.distance_tolerance = d["distance_tolerance"].get<double>() * lf;
     m.detection.angle_tolerance_degrees = d.value("angle_tolerance", m.detection.angle_tolerance_degrees);
     m.detection.min_area_fraction = d.value("min_area_fraction", m.detection.min_area_fraction);
+    m.detection.max_near_misses = d.value("max_near_misses", m.detection.max_near_misses);
   }
 
   issues.throw_if_any();  // loads refer to blocks by id: the index must be sound first

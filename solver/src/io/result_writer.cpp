@@ -1,5 +1,7 @@
 #include "io/result_writer.hpp"
 
+#include "io/detection_json.hpp"
+
 namespace rbla::io {
 
 using nlohmann::json;
@@ -69,7 +71,7 @@ json warnings_json(const model::Model& model) {
 }
 
 json model_only_result(const model::Model& model, const StageTimings& timings, const std::string& source) {
-  json result{{"schema_version", "1.1.0"},
+  json result{{"schema_version", "1.2.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
               {"verdict", "Model read and checked; no analysis was run."},
@@ -86,6 +88,7 @@ json model_only_result(const model::Model& model, const StageTimings& timings, c
   if (!source.empty() && source != "-") source_info["source"] = source;
   if (!model.title.empty()) source_info["title"] = model.title;
   if (!source_info.empty()) result["model"] = source_info;
+  if (model.detection_summary.ran) result["detection"] = detection_json(model);
   return result;
 }
 

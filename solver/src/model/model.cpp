@@ -71,7 +71,7 @@ std::size_t Model::num_contact_points() const {
 
 double Model::distance_tolerance() const {
   if (detection.distance_tolerance) return *detection.distance_tolerance;
-  return detection.relative_tolerance * std::max(bounding_box().diagonal(), 1e-300);
+  return detection.relative_tolerance.value_or(kModelRelativeTolerance) * std::max(bounding_box().diagonal(), 1e-300);
 }
 
 }  // namespace rbla::model
