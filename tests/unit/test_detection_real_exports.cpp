@@ -3,6 +3,8 @@
 // near-miss report. Expected counts and polygons come from the construction of each scene.
 #include "geometry/interface_detection.hpp"
 #include "io/load_model.hpp"
+#include "io/result_writer.hpp"
+#include "io/schema_validation.hpp"
 #include "rbla/embedded_schemas.hpp"
 #include "support/model_builder.hpp"
 
@@ -147,6 +149,32 @@ TEST(NearMisses, NameTheBlocksFacesDistanceAndAngle) {
   ASSERT_EQ(one.near_misses.size(), 1u);
   EXPECT_EQ(one.blocks[one.near_misses[0].block_b].id, "gap");
   EXPECT_EQ(one.detection_summary.near_misses_total, 2u);
+}
+
+TEST(NearMisses, AreInTheResultJsonInTheModelsUnits) {
+  // The near-miss scene in millimetres: a 1000 mm cube 60 mm above its base.
+  json model = scaled(model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"),
+                                              box_block("gap", 0, 0, 0.06, 1, 1, 1), box_block("on", 1.5, 0, 0, 1.9, 1, 1)})),
+                      1000.0);
+  model["units"]["length"] = "mm";
+  const Model m = load(model);
+  const json result = rbla::io::model_only_result(m, {}, "");
+  const auto issues = rbla::io::validate_against_schema(result, rbla::io::SchemaKind::Result);
+  EXPECT_TRUE(issues.empty()) << issues.front().pointer << ": " << issues.front().message;
+  const json& d = result["detection"];
+  EXPECT_EQ(d["tolerances"]["rule"], "per_joint");
+  EXPECT_DOUBLE_EQ(d["tolerances"]["joint_tolerance"].get<double>(), 0.03);
+  EXPECT_EQ(d["num_interfaces"], 1);
+  EXPECT_EQ(d["num_near_misses"], 1);
+  ASSERT_EQ(d["near_misses"].size(), 1u);
+  const json& miss = d["near_misses"][0];
+  EXPECT_EQ(miss["blocks"], json::array({"base", "gap"}));
+  EXPECT_EQ(miss["faces"], json::array({1, 0}));
+  EXPECT_NEAR(miss["distance"].get<double>(), 60.0, 1e-9);
+  EXPECT_NEAR(miss["distance_tolerance"].get<double>(), 30.0 * std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(miss["overlap_area"].get<double>(), 1e6, 1e-3);
+  // The block "on" is 0.4 x 1 m at its base: its joint's tolerance is 3 % of sqrt(1.16) m.
+  EXPECT_NEAR(d["tolerances"]["distance_used"]["max"].get<double>(), 30.0 * std::sqrt(1.16), 1e-9);
 }
 
 TEST(WarpedFaces, AJointWarpedByCentimetresIsOneInterfaceOnItsFittedPlane) {
