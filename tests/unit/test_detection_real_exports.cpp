@@ -316,3 +316,21 @@ TEST(DetectionSettings, TheSchemaDefaultsAreTheSolversDefaults) {
   EXPECT_FALSE(d.relative_tolerance.has_value());
   EXPECT_FALSE(d.distance_tolerance.has_value());
 }
+
+TEST(GivenInterfaces, TheNormalComesFromTheFaceTheContactLiesOn) {
+  // B rests on the low step of an L-shaped A whose centroid (z = 1.65) is above B's (0.75): the
+  // direction between the centroids points down, but the contact is A's top face of the step and
+  // its normal from A into B is +z.
+  const json a{{"id", "A"}, {"role", "fixed"},
+               {"vertices", {{0, 0, 0}, {3, 0, 0}, {3, 0, 0.5}, {1, 0, 0.5}, {1, 0, 4}, {0, 0, 4},
+                             {0, 1, 0}, {3, 1, 0}, {3, 1, 0.5}, {1, 1, 0.5}, {1, 1, 4}, {0, 1, 4}}},
+               {"faces", {{0, 1, 2, 3, 4, 5}, {6, 11, 10, 9, 8, 7}, {0, 6, 7, 1}, {1, 7, 8, 2},
+                          {2, 8, 9, 3}, {3, 9, 10, 4}, {4, 10, 11, 5}, {5, 11, 6, 0}}}};
+  json model = model_with(json::array({a, box_block("B", 2, 0, 0.5, 3, 1, 1.0)}));
+  model["interfaces"] = {{{"id", "step"}, {"blocks", {"A", "B"}},
+                          {"polygon", {{2, 0, 0.5}, {3, 0, 0.5}, {3, 1, 0.5}, {2, 1, 0.5}}}}};
+  const Model m = load(model);
+  ASSERT_EQ(m.interfaces.size(), 1u);
+  EXPECT_NEAR((m.interfaces[0].normal - Vec3::UnitZ()).norm(), 0.0, 1e-12);
+  EXPECT_GT(m.blocks[0].centroid.z(), m.blocks[1].centroid.z());
+}

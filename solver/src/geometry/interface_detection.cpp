@@ -1,6 +1,7 @@
 #include "geometry/interface_detection.hpp"
 
 #include "geometry/polygon2d.hpp"
+#include "geometry/polyhedron.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -63,6 +64,27 @@ model::Spread spread_of(std::vector<double>& values) {
   s.min = *lo;
   s.max = *hi;
   return s;
+}
+
+Vec3 given_interface_normal(const model::Model& m, int a, int b, const Vec3& n, const Vec3& c, double tolerance) {
+  const model::Block& block = m.blocks[a];
+  const double cos_limit = std::cos(10.0 * M_PI / 180.0);
+  double best = std::numeric_limits<double>::infinity();
+  Vec3 normal = Vec3::Zero();
+  for (const auto& face : block.faces) {
+    const FaceGeometry g = face_geometry(block.vertices, face);
+    const double distance = std::abs(g.normal.dot(c - g.centroid));
+    if (std::abs(g.normal.dot(n)) < cos_limit || distance > tolerance || distance >= best) continue;
+    Vec3 t1, t2;
+    local_frame(g.normal, t1, t2);
+    Polygon2 outline;
+    for (const int i : face) outline.emplace_back(block.vertices[i].dot(t1), block.vertices[i].dot(t2));
+    if (!contains(outline, Point2(c.dot(t1), c.dot(t2)), tolerance)) continue;
+    best = distance;
+    normal = g.normal.dot(n) > 0.0 ? n : Vec3(-n);
+  }
+  if (best < std::numeric_limits<double>::infinity()) return normal;
+  return n.dot(m.blocks[b].centroid - block.centroid) < 0.0 ? Vec3(-n) : n;
 }
 
 namespace {

@@ -62,6 +62,16 @@ struct DetectionOutcome {
 /// `skip_pairs` (a < b) are block pairs the caller already has interfaces for.
 DetectionOutcome detect_interfaces(const model::Model& model, const std::vector<std::pair<int, int>>& skip_pairs);
 
+/// The unit normal, pointing from block a into block b, of a contact polygon the model gives
+/// (normal n and centroid c from the polygon): the outward normal of the face of `a` the polygon
+/// lies on (a face whose normal is within 10 degrees of +-n, whose plane passes within
+/// `tolerance` of c and whose outline contains c), oriented like n. Interlocking blocks touch on
+/// faces whose normals point towards their own centroid's side, so the centroids alone do not
+/// tell (COMPAS stores such contacts for its concave pieces); they decide only when no face of
+/// `a` carries the polygon.
+Eigen::Vector3d given_interface_normal(const model::Model& model, int a, int b, const Eigen::Vector3d& n,
+                                       const Eigen::Vector3d& c, double tolerance);
+
 /// Min, median and max of `values` (reordered).
 model::Spread spread_of(std::vector<double>& values);
 

@@ -188,10 +188,8 @@ void prepare_given_interface(model::ContactInterface& contact, std::size_t index
                                                 " from the polygon's plane"});
     return;
   }
-  contact.normal = face.normal;
   // The schema says the normal points from blocks[0] into blocks[1].
-  const Vec3 a_to_b = m.blocks[contact.block_b].centroid - m.blocks[contact.block_a].centroid;
-  if (contact.normal.dot(a_to_b) < 0.0) contact.normal = -contact.normal;
+  contact.normal = given_interface_normal(m, contact.block_a, contact.block_b, face.normal, face.centroid, tolerance);
   local_frame(contact.normal, contact.tangent1, contact.tangent2);
   contact.area = face.area;
   contact.centroid = face.centroid;
