@@ -161,41 +161,108 @@ void flatness(const model::Block& block, const BlockFaces& bf, const std::vector
 
 double flatness_limit(double fixed, double fraction, double size) { return fixed >= 0.0 ? fixed : fraction * size; }
 
+/// A patch while it grows: its plane (normal of the summed area vectors, through the mean of the
+/// members' corners), a bound on its members' distance from that plane, and their extent.
+struct Growth {
+  std::vector<int> members;
+  Vec3 area = Vec3::Zero();
+  Vec3 sum = Vec3::Zero();  // of the members' corners
+  int count = 0;
+  double deviation = 0.0;   // >= the largest distance of a member corner from the plane
+  double radius = 0.0;      // >= the largest distance of a member corner from the mean
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  Vec3 normal() const { return area.normalized(); }
+  Vec3 mean() const { return sum / count; }
+};
+
+/// Adds `face` to the growth when its corners stay within the flatness limit; false otherwise.
+/// Old corners are bounded without visiting them: moving the plane from (n, c) to (n', c') moves
+/// a corner v's distance by at most |n' - n| |v - c| + |c' - c|. Only when that bound is too
+/// loose are all corners measured again, so a cap split into thousands of triangles stays linear.
+bool try_add(const model::Block& block, const BlockFaces& bf, Growth& g, int face, double fixed, double fraction) {
+  const Vec3 area = g.area + bf.area_vectors[face];
+  Vec3 sum = g.sum, lo = g.lo, hi = g.hi;
+  int count = g.count;
+  for (const int v : bf.faces[face]) {
+    sum += block.vertices[v];
+    ++count;
+    lo = lo.cwiseMin(block.vertices[v]);
+    hi = hi.cwiseMax(block.vertices[v]);
+  }
+  const Vec3 n = area.normalized(), c = sum / count;
+  const double shift = (c - g.mean()).norm();
+  double deviation = g.deviation + (n - g.normal()).norm() * g.radius + shift;
+  double radius = g.radius + shift;
+  for (const int v : bf.faces[face]) {
+    deviation = std::max(deviation, std::abs(n.dot(block.vertices[v] - c)));
+    radius = std::max(radius, (block.vertices[v] - c).norm());
+  }
+  const double limit = flatness_limit(fixed, fraction, (hi - lo).norm());
+  if (deviation > limit) {  // measure every corner against the new plane
+    deviation = radius = 0.0;
+    auto measure = [&](int f) {
+      for (const int v : bf.faces[f]) {
+        deviation = std::max(deviation, std::abs(n.dot(block.vertices[v] - c)));
+        radius = std::max(radius, (block.vertices[v] - c).norm());
+      }
+    };
+    for (const int f : g.members) measure(f);
+    measure(face);
+    if (deviation > limit) return false;
+  }
+  g.members.push_back(face);
+  g.area = area;
+  g.sum = sum;
+  g.count = count;
+  g.lo = lo;
+  g.hi = hi;
+  g.deviation = deviation;
+  g.radius = radius;
+  return true;
+}
+
 /// Grows a patch from `seed` over neighbours that keep it flat (see face_patches()).
 std::vector<int> grow(const model::Block& block, const BlockFaces& bf, int seed, const std::vector<int>& assigned,
                       const PatchLimits& limits) {
   const double cos_limit = std::cos(limits.angle_degrees * M_PI / 180.0);
   const double cos_pair_limit = std::cos(limits.triangle_pair_angle_degrees * M_PI / 180.0);
-  std::vector<int> members{seed};
-  Vec3 area = bf.area_vectors[seed];
-  std::vector<char> tried(bf.faces.size(), 0);
-  tried[seed] = 1;
-  for (std::size_t i = 0; i < members.size(); ++i) {
-    for (const int g : bf.neighbours[members[i]]) {
-      if (tried[g] || assigned[g] >= 0 || bf.area_vectors[g].norm() <= 0.0) continue;
-      const bool triangle_pair = members.size() == 1 && bf.faces[seed].size() == 3 && bf.faces[g].size() == 3;
-      if (bf.area_vectors[g].normalized().dot(area.normalized()) < (triangle_pair ? cos_pair_limit : cos_limit)) continue;
-      std::vector<int> trial = members;
-      trial.push_back(g);
-      const Vec3 normal = (area + bf.area_vectors[g]).normalized();
-      Vec3 point = Vec3::Zero();
-      int count = 0;
-      for (const int f : trial) {
-        for (const int v : bf.faces[f]) point += block.vertices[v], ++count;
-      }
-      point /= count;
-      double deviation = 0.0, diagonal = 0.0;
-      flatness(block, bf, trial, normal, point, deviation, diagonal);
-      const double limit = triangle_pair ? flatness_limit(limits.triangle_pair_flatness_fixed,
-                                                          limits.triangle_pair_flatness_fraction, diagonal)
-                                         : flatness_limit(limits.flatness_fixed, limits.flatness_fraction, diagonal);
-      if (deviation > limit) continue;
-      tried[g] = 1;
-      members.push_back(g);
-      area += bf.area_vectors[g];
+  Growth growth;
+  growth.members = {seed};
+  growth.area = bf.area_vectors[seed];
+  for (const int v : bf.faces[seed]) {
+    growth.sum += block.vertices[v];
+    ++growth.count;
+    growth.lo = growth.lo.cwiseMin(block.vertices[v]);
+    growth.hi = growth.hi.cwiseMax(block.vertices[v]);
+  }
+  double diagonal = 0.0;
+  flatness(block, bf, growth.members, growth.normal(), growth.mean(), growth.deviation, diagonal);
+  for (const int v : bf.faces[seed]) growth.radius = std::max(growth.radius, (block.vertices[v] - growth.mean()).norm());
+  // A triangle's partner in a split quad is its most nearly coplanar neighbouring triangle: only
+  // that one gets the triangle-pair limits (a small facet next to a split face must not).
+  int partner = -1;
+  if (bf.faces[seed].size() == 3) {
+    double best = -2.0;
+    for (const int f : bf.neighbours[seed]) {
+      if (assigned[f] >= 0 || bf.faces[f].size() != 3 || bf.area_vectors[f].norm() <= 0.0) continue;
+      const double c = bf.area_vectors[f].normalized().dot(growth.normal());
+      if (c > best) best = c, partner = f;
     }
   }
-  return members;
+  std::vector<char> taken(bf.faces.size(), 0);
+  taken[seed] = 1;
+  for (std::size_t i = 0; i < growth.members.size(); ++i) {
+    for (const int f : bf.neighbours[growth.members[i]]) {
+      if (taken[f] || assigned[f] >= 0 || bf.area_vectors[f].norm() <= 0.0) continue;
+      const bool pair = growth.members.size() == 1 && f == partner;
+      if (bf.area_vectors[f].normalized().dot(growth.normal()) < (pair ? cos_pair_limit : cos_limit)) continue;
+      const bool added =
+          pair ? try_add(block, bf, growth, f, limits.triangle_pair_flatness_fixed, limits.triangle_pair_flatness_fraction)
+               : try_add(block, bf, growth, f, limits.flatness_fixed, limits.flatness_fraction);
+      if (added) taken[f] = 1;
+    }
+  }
+  return growth.members;
 }
 
 FacePatch make_patch(const model::Block& block, const BlockFaces& bf, std::vector<int> members,

@@ -54,7 +54,7 @@ double polygon_diameter(const std::vector<Eigen::Vector3d>& vertices, const std:
 /// The patches of a block: region growing from the largest face over shared edges, taking a
 /// neighbour when its normal is within `limits.angle_degrees` of the patch's and every member
 /// vertex stays within the flatness limit of the merged plane (the triangle-pair limits when a
-/// single triangle takes a neighbouring triangle). A merged patch must have one
+/// single triangle takes its most nearly coplanar neighbouring triangle). A merged patch must have one
 /// simple boundary loop (no hole, no pinched vertex); otherwise its faces stay separate.
 /// Vertices closer than 1e-9 of the block's size are one vertex (exports repeat them per face).
 /// Faces of zero area get no patch.
