@@ -119,14 +119,14 @@ std::vector<BlockPatches> all_patches(const model::Model& m, const DetectionTole
   return out;
 }
 
-/// Broad phase: block pairs (a < b, not two supports) whose padded boxes overlap, sorted.
+/// Broad phase: block pairs (a < b, not two supports) whose boxes overlap once padded by the
+/// smaller of their two pads (a joint's tolerance follows its smaller face, so a base slab's large
+/// pad does not widen the search around every block on it), sorted.
 std::vector<std::pair<int, int>> candidate_pairs(const model::Model& m, const std::vector<BlockPatches>& bp) {
   const int n = static_cast<int>(bp.size());
   const model::BoundingBox extent = m.bounding_box();
   int axis = 0;
   (extent.max - extent.min).maxCoeff(&axis);
-  double max_pad = 0.0;
-  for (const auto& b : bp) max_pad = std::max(max_pad, b.pad);
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) {
@@ -137,9 +137,11 @@ std::vector<std::pair<int, int>> candidate_pairs(const model::Model& m, const st
     const int a = order[i];
     for (int j = i + 1; j < n; ++j) {
       const int b = order[j];
-      if (bp[b].box_min[axis] > bp[a].box_max[axis] + bp[a].pad + max_pad) break;
+      if (bp[b].box_min[axis] > bp[a].box_max[axis] + bp[a].pad) break;
       if (m.blocks[a].is_support() && m.blocks[b].is_support()) continue;
-      if (!boxes_overlap(bp[a].box_min, bp[a].box_max, bp[b].box_min, bp[b].box_max, bp[a].pad + bp[b].pad)) continue;
+      if (!boxes_overlap(bp[a].box_min, bp[a].box_max, bp[b].box_min, bp[b].box_max, std::min(bp[a].pad, bp[b].pad))) {
+        continue;
+      }
       candidates.emplace_back(std::min(a, b), std::max(a, b));
     }
   }
