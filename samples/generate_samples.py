@@ -32,6 +32,8 @@ import os
 import sys
 import time
 
+import imperfections
+
 SCHEMA_VERSION = "1.0.0"
 COORD_DECIMALS = 10    # vertex coordinates are rounded to 1e-10 length units
 DERIVED_DECIMALS = 12  # centroid and volume are rounded to 1e-12
@@ -147,8 +149,9 @@ def make_block(block_id, vertices, faces, role="free", label=None):
 # Self-check
 # --------------------------------------------------------------------------------------------
 
-def check_block(b):
-    """Return a list of problems with one block (empty when it is sound)."""
+def check_block(b, planar=True):
+    """Return a list of problems with one block (empty when it is sound). With planar=False
+    (warped scenes) faces are not required to be planar."""
     problems = []
     V = b["vertices"]
     F = b["faces"]
@@ -183,7 +186,7 @@ def check_block(b):
         p0 = V[f[0]]
         for i in f:
             d = _dot(_sub(V[i], p0), n)
-            if abs(d) > 1e-9 * max(1.0, scale):
+            if planar and abs(d) > 1e-9 * max(1.0, scale):
                 problems.append("block %s: face %d not planar (%.3g)" % (bid, fi, d))
                 break
         # convex blocks: the centroid lies on the inner side of every face plane
@@ -199,14 +202,14 @@ def check_block(b):
     return problems
 
 
-def self_check(model, name):
+def self_check(model, name, planar=True):
     problems = []
     ids = set()
     for b in model["blocks"]:
         if b["id"] in ids:
             problems.append("duplicate block id %s" % b["id"])
         ids.add(b["id"])
-        problems.extend(check_block(b))
+        problems.extend(check_block(b, planar))
     if problems:
         for p in problems[:50]:
             sys.stderr.write("self-check %s: %s\n" % (name, p))
@@ -909,6 +912,105 @@ def scene_church(args):
 
 
 # --------------------------------------------------------------------------------------------
+# Shells of voussoirs in the style of COMPAS exports: a dome and a freeform vault
+# --------------------------------------------------------------------------------------------
+
+def hexahedron(bottom, top):
+    """A block from two quads of corresponding corners (bottom[i] joined to top[i]).
+
+    Faces: the two quads and four side quads, oriented outward (reversed together when the
+    corners come in the other order). The faces need not be planar: offset surfaces give warped
+    quads, exactly as CAD voussoirs made from a mesh do.
+    """
+    vertices = [[_r(c) for c in p] for p in list(bottom) + list(top)]
+    faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
+    vol, _ = volume_centroid(vertices, faces)
+    if vol < 0.0:
+        faces = [list(reversed(f)) for f in faces]
+    return vertices, faces
+
+
+def scene_dome(args):
+    """Hemispherical dome of voussoirs between meridian and parallel planes, courses staggered
+    by half a voussoir (so every bed face carries two voussoirs above), an oculus at the top,
+    springing at z = 0 on a fixed square slab. Clean faces are planar: a quad between two
+    meridians and two parallels of a sphere is an isosceles trapezoid."""
+    R, t, nr, ns = args.radius, args.thickness, args.rings, args.segments
+    top = math.radians(args.oculus)
+    if not 0.0 < top < math.pi / 2 or t >= R:
+        raise SystemExit("dome: the oculus must be in (0, 90) degrees and the thickness below R")
+    ri, re = R - t / 2.0, R + t / 2.0
+    m, tb = args.base_margin, args.base_thickness
+    model = model_skeleton("hemispherical dome of %d voussoirs (%d courses x %d), R = %g m, "
+                           "t = %g m, oculus at %g deg, on a fixed slab; seismic +x"
+                           % (nr * ns, nr, ns, R, t, args.oculus), args)
+    blocks = model["blocks"]
+    blocks.append(make_block("base", *box(-re - m, re + m, -re - m, re + m, -tb, 0.0), role="fixed"))
+
+    def point(r, theta, phi):
+        # theta from the vertical axis; the springing course starts at theta = 90 deg (z = 0)
+        z = 0.0 if abs(theta - math.pi / 2) < 1e-15 else r * math.cos(theta)
+        return (r * math.sin(theta) * math.cos(phi), r * math.sin(theta) * math.sin(phi), z)
+    wr, ws = len(str(nr - 1)), len(str(ns - 1))
+    for k in range(nr):
+        th0 = math.pi / 2 - (math.pi / 2 - top) * k / nr
+        th1 = math.pi / 2 - (math.pi / 2 - top) * (k + 1) / nr
+        shift = 0.5 if (args.stagger and k % 2) else 0.0
+        for j in range(ns):
+            ph0 = 2.0 * math.pi * (j + shift) / ns
+            ph1 = 2.0 * math.pi * (j + 1 + shift) / ns
+            bottom = [point(ri, th0, ph0), point(ri, th0, ph1), point(re, th0, ph1), point(re, th0, ph0)]
+            upper = [point(ri, th1, ph0), point(ri, th1, ph1), point(re, th1, ph1), point(re, th1, ph0)]
+            blocks.append(make_block("d%0*d_%0*d" % (wr, k, ws, j), *hexahedron(bottom, upper)))
+    model["analysis"] = seismic_analysis([1, 0, 0])
+    return model
+
+
+def scene_vault(args):
+    """Freeform barrel vault: the mid-surface z = H (1 - (x/a)^2) (1 + c sin(pi y / L)) over
+    [-a, a] x [0, L], cut into an nu x nv quad mesh and offset by +-t/2 along the vertex normals
+    (as COMPAS materialises a form-found mesh). Neighbouring voussoirs share their joint faces
+    exactly, but those faces, like the intrados and extrados, are warped (the surface is doubly
+    curved). The two long edges stand on a fixed slab: their offsets are horizontal there, so
+    every foot is a horizontal face at z = 0 (2 nv feet)."""
+    a, L, H, t, c = args.half_span, args.length, args.rise, args.thickness, args.wave
+    nu, nv = args.nu, args.nv
+    m, tb = args.base_margin, args.base_thickness
+    model = model_skeleton("freeform barrel vault of %d voussoirs (%d x %d), span %g m, length %g m, "
+                           "rise %g m (x (1 + %g sin)), t = %g m, warped faces, %d feet on a fixed "
+                           "slab; seismic +x" % (nu * nv, nu, nv, 2 * a, L, H, c, t, 2 * nv), args)
+    blocks = model["blocks"]
+    blocks.append(make_block("base", *box(-a - t - m, a + t + m, -m, L + m, -tb, 0.0), role="fixed"))
+
+    def mid(i, j):
+        x, y = -a + 2.0 * a * i / nu, L * j / float(nv)
+        g = 1.0 + c * math.sin(math.pi * y / L)
+        z = H * (1.0 - (x / a) ** 2) * g
+        fx = -2.0 * H * x / a ** 2 * g
+        fy = H * (1.0 - (x / a) ** 2) * c * math.pi / L * math.cos(math.pi * y / L)
+        if i in (0, nu):  # a foot: offset horizontally, the foot face lies on the ground
+            n = (-fx, -fy, 0.0)
+            z = 0.0
+        else:
+            n = (-fx, -fy, 1.0)
+        ln = math.sqrt(_dot(n, n))
+        return (x, y, z), (n[0] / ln, n[1] / ln, n[2] / ln)
+
+    def offset(i, j, side):
+        p, n = mid(i, j)
+        return tuple(p[k] + side * 0.5 * t * n[k] for k in range(3))
+    wu, wv = len(str(nu - 1)), len(str(nv - 1))
+    for i in range(nu):
+        for j in range(nv):
+            corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)]
+            intrados = [offset(p, q, -1.0) for p, q in corners]
+            extrados = [offset(p, q, 1.0) for p, q in corners]
+            blocks.append(make_block("v%0*d_%0*d" % (wu, i, wv, j), *hexahedron(intrados, extrados)))
+    model["analysis"] = seismic_analysis([1, 0, 0])
+    return model
+
+
+# --------------------------------------------------------------------------------------------
 # CLI
 # --------------------------------------------------------------------------------------------
 
@@ -928,6 +1030,8 @@ SCENES = {
     "wall-settlement": scene_wall_settlement,
     "facade": scene_facade,
     "church": scene_church,
+    "dome": scene_dome,
+    "vault": scene_vault,
 }
 
 
@@ -952,6 +1056,9 @@ def build_parser():
     base.add_argument("--base-thickness", type=float, default=0.5,
                       help="base slab thickness, m (default 0.5)")
 
+    imperf = argparse.ArgumentParser(add_help=False)
+    imperfections.add_arguments(imperf)
+
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter,
                                 epilog="Run '<subcommand> -h' for a scene's options.")
@@ -959,20 +1066,20 @@ def build_parser():
     sub.required = True
     D = argparse.ArgumentDefaultsHelpFormatter
 
-    s = sub.add_parser("block", parents=[common, out, base], formatter_class=D,
+    s = sub.add_parser("block", parents=[common, out, base, imperf], formatter_class=D,
                        help="a single block on a fixed base, seismic +x (alpha = min(b/h, mu))")
     s.add_argument("--width", type=float, default=1.0, help="b, along x, m")
     s.add_argument("--depth", type=float, default=1.0, help="d, along y, m")
     s.add_argument("--height", type=float, default=2.0, help="h, along z, m")
 
-    s = sub.add_parser("column", parents=[common, out, base], formatter_class=D,
+    s = sub.add_parser("column", parents=[common, out, base, imperf], formatter_class=D,
                        help="n stacked blocks on a fixed base, seismic +x (alpha = min(b/H, mu))")
     s.add_argument("--count", type=int, default=4, help="number of blocks")
     s.add_argument("--width", type=float, default=0.5, help="b, along x, m")
     s.add_argument("--depth", type=float, default=0.5, help="along y, m")
     s.add_argument("--block-height", type=float, default=0.5, help="height of one block, m")
 
-    s = sub.add_parser("arch", parents=[common, out], formatter_class=D,
+    s = sub.add_parser("arch", parents=[common, out, imperf], formatter_class=D,
                        help="semicircular arch of radial voussoirs on fixed abutments, seismic +x")
     s.add_argument("--voussoirs", type=int, default=16, help="N")
     s.add_argument("--radius", type=float, default=5.0, help="centreline radius R, m")
@@ -987,7 +1094,7 @@ def build_parser():
     wall.add_argument("--block-thickness", type=float, default=0.38, help="along y, m")
     wall.add_argument("--block-height", type=float, default=0.25, help="along z, m")
 
-    s = sub.add_parser("wall-opening", parents=[common, out, base, wall], formatter_class=D,
+    s = sub.add_parser("wall-opening", parents=[common, out, base, wall, imperf], formatter_class=D,
                        help="running-bond wall with a window and a lintel, seismic +x")
     s.add_argument("--courses", type=int, default=12, help="number of courses")
     s.add_argument("--blocks", type=int, default=10, help="whole blocks per course")
@@ -1000,7 +1107,7 @@ def build_parser():
 
     gap_help = ("gap between the fixed and the moving base blocks, m: two supports that touch "
                 "would form an interface that can hold the moving one")
-    s = sub.add_parser("wall-settlement", parents=[common, out, base, wall], formatter_class=D,
+    s = sub.add_parser("wall-settlement", parents=[common, out, base, wall, imperf], formatter_class=D,
                        help="running-bond wall on a fixed and a moving base block, settlement")
     s.add_argument("--courses", type=int, default=10, help="number of courses")
     s.add_argument("--blocks", type=int, default=12, help="whole blocks per course")
@@ -1008,7 +1115,7 @@ def build_parser():
                    help="fraction of the wall length (right end) over the moving support")
     s.add_argument("--support-gap", type=float, default=0.01, help=gap_help)
 
-    s = sub.add_parser("facade", parents=[common, out, base], formatter_class=D,
+    s = sub.add_parser("facade", parents=[common, out, base, imperf], formatter_class=D,
                        help="façade-scale running-bond wall (default 50 x 38, ~1900 blocks)")
     s.add_argument("--nx", type=int, default=50, help="whole blocks per course")
     s.add_argument("--ny", type=int, default=38, help="number of courses")
@@ -1022,7 +1129,7 @@ def build_parser():
                    help="seismic analysis along +x or +y (the default is +x)")
     s.add_argument("--support-gap", type=float, default=0.01, help=gap_help)
 
-    s = sub.add_parser("church", parents=[common, out, base], formatter_class=D,
+    s = sub.add_parser("church", parents=[common, out, base, imperf], formatter_class=D,
                        help="church facade with arched doors and windows and a rose window "
                             "(~1900 blocks; --scale or --blocks from ~200 to ~50000)")
     g = s.add_mutually_exclusive_group()
@@ -1050,11 +1157,41 @@ def build_parser():
                    help="running-bond joints closer than this many block lengths to an opening's "
                         "edge are dropped, so no sliver is cut")
 
+    s = sub.add_parser("dome", parents=[common, out, base, imperf], formatter_class=D,
+                       help="hemispherical dome of staggered voussoirs with an oculus, on a fixed "
+                            "slab, seismic +x (3-D)")
+    s.add_argument("--radius", type=float, default=7.5, help="mid-surface radius R, m")
+    s.add_argument("--thickness", type=float, default=0.5, help="shell thickness t, m")
+    s.add_argument("--rings", type=int, default=12, help="courses from the springing to the oculus")
+    s.add_argument("--segments", type=int, default=40, help="voussoirs per course")
+    s.add_argument("--oculus", type=float, default=15.0,
+                   help="half-angle of the oculus seen from the centre, degrees")
+    s.add_argument("--no-stagger", dest="stagger", action="store_false",
+                   help="align the meridian joints of all courses")
+
+    s = sub.add_parser("vault", parents=[common, out, base, imperf], formatter_class=D,
+                       help="freeform barrel vault of voussoirs with warped faces (an offset quad "
+                            "mesh), feet on a fixed slab, seismic +x (3-D)")
+    s.add_argument("--half-span", type=float, default=4.0, help="a: the feet are at x = +-a, m")
+    s.add_argument("--length", type=float, default=10.0, help="L, along y, m")
+    s.add_argument("--rise", type=float, default=3.0, help="H at the ends, m")
+    s.add_argument("--wave", type=float, default=0.3,
+                   help="c: the crown rises to H (1 + c) at mid-length (double curvature)")
+    s.add_argument("--thickness", type=float, default=0.4, help="t, m")
+    s.add_argument("--nu", type=int, default=20, help="voussoirs across the span")
+    s.add_argument("--nv", type=int, default=30, help="voussoirs along the length")
+
     s = sub.add_parser("all", parents=[common], formatter_class=D,
                        help="regenerate every bundled sample with its default sizes")
     s.add_argument("--dir", default=os.path.dirname(os.path.abspath(__file__)),
                    help="output directory")
     return p
+
+
+def _planar_faces(args):
+    """Whether the scene's faces are planar: not for the vault (offset surfaces) nor after
+    imperfections that move vertices."""
+    return args.scene != "vault" and not (args.noise or args.warp)
 
 
 def main(argv=None):
@@ -1076,7 +1213,8 @@ def main(argv=None):
             sys.stderr.write("wrote %s (%d blocks)\n" % (path, len(model["blocks"])))
         return 0 if ok else 1
     model = SCENES[args.scene](args)
-    if args.self_check and not self_check(model, args.scene):
+    imperfections.apply(model, args, make_block)
+    if args.self_check and not self_check(model, args.scene, planar=_planar_faces(args)):
         return 1
     compact = args.compact
     if compact is None:

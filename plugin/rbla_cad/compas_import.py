@@ -22,12 +22,20 @@ oriented, positive volume from the faces). Centroid and volume are computed from
 written. Interfaces stored on the graph edges are written only with ``--interfaces`` (by default
 rbla detects them); their block order is chosen so the normal points from blocks[0] into blocks[1].
 
-compas_cra files usually carry no supports (its example scripts call
-``set_boundary_conditions([0])`` after loading): use ``--support 0`` or ``--fix-lowest``.
+Other layouts (COMPAS 1 ``{"dtype", "value"}`` data, compas_assembly's ``{"assembly",
+"blocks"}`` files, a single mesh or a list of meshes) are read by ``compas_formats``; anything
+else is refused with a message saying what was found and what is expected.
+
+Supports: the file's ``is_support`` nodes, ``--support KEY``, and, when the file marks none (or
+with ``--ground always``), every block resting on the ground plane: the horizontal plane through
+the model's lowest point, touched by a downward face whose corners are all within rbla's default
+joint tolerance (3 % of that face's diameter, read from the bundled schema) of it. compas_cra
+files usually carry no supports (its example scripts call ``set_boundary_conditions([0])`` after
+loading), so their lowest blocks become fixed.
 
 Usage (from plugin/)::
 
-    python3 -m rbla_cad.compas_import IN.json -o OUT.json [--support 0,1] [--fix-lowest]
+    python3 -m rbla_cad.compas_import IN.json -o OUT.json [--support 0,1] [--ground auto|always|never]
                                      [--interfaces] [--unit-weight 18] [--friction 0.6]
 
 Exit status: 0 converted, 1 the file is not a convertible assembly (message on stderr),
@@ -40,26 +48,61 @@ import math
 import os
 import sys
 
+from .compas_formats import ConversionError, read_assembly, unwrap  # noqa: F401 (re-exported)
+# Geometry helpers are shared with the rest of the core (divergence-theorem volume, Newell normal).
+from .geometry import dot as _dot, newell_normal, sub as _sub, volume_centroid
+from .jsonschema_lite import load_schema
+
 SCHEMA_VERSION = "1.0.0"
 
 
-class ConversionError(Exception):
-    """The input is not an assembly this converter understands."""
+def detection_defaults():
+    """rbla's default joint tolerance (fraction of a face's diameter) and angle tolerance
+    (degrees), from the bundled model schema: one place for those numbers."""
+    props = load_schema("model")["properties"]["detection"]["properties"]
+    return props["joint_tolerance"]["default"], props["angle_tolerance"]["default"]
 
 
-# Geometry helpers are shared with the rest of the core (divergence-theorem volume, Newell normal).
-from .geometry import cross as _cross, dot as _dot, newell_normal, sub as _sub, volume_centroid  # noqa: E402
+def _closure_problems(vertices, faces):
+    """Edges of a block not matched by an edge of opposite direction, after splitting edges at
+    the vertices lying on them (T-junctions, as faces split into coplanar pieces leave them).
+    Returns (number of unmatched edges, whether T-junctions were needed)."""
+    def count(edge_list):
+        edges = {}
+        for e in edge_list:
+            edges[e] = edges.get(e, 0) + 1
+        return sum(1 for e, c in edges.items() if c != 1 or edges.get((e[1], e[0]), 0) != 1)
+    plain = [(f[k], f[(k + 1) % len(f)]) for f in faces for k in range(len(f))]
+    bad = count(plain)
+    if not bad:
+        return 0, False
+    lo = [min(v[i] for v in vertices) for i in range(3)]
+    hi = [max(v[i] for v in vertices) for i in range(3)]
+    eps = 1e-9 * math.sqrt(sum((hi[i] - lo[i]) ** 2 for i in range(3)))
+    split = []
+    for a, b in plain:
+        ab = _sub(vertices[b], vertices[a])
+        L2 = _dot(ab, ab)
+        inner = []
+        for k, v in enumerate(vertices):
+            if k in (a, b) or L2 == 0.0:
+                continue
+            t = _dot(_sub(v, vertices[a]), ab) / L2
+            if 0.0 < t < 1.0:
+                d = _sub(_sub(v, vertices[a]), tuple(t * c for c in ab))
+                if math.sqrt(_dot(d, d)) <= eps:
+                    inner.append((t, k))
+        chain = [a] + [k for _, k in sorted(inner)] + [b]
+        split.extend(zip(chain[:-1], chain[1:]))
+    bad_split = count(split)
+    return bad_split, bad_split == 0
 
 
 def block_report(vertices, faces):
-    """Checks of one block: closure/orientation of its edges, volume, largest face warp."""
+    """Checks of one block: closure/orientation of its edges (T-junctions accepted, as rbla
+    accepts them), volume, largest face warp."""
     problems = []
-    edges = {}
-    for f in faces:
-        for k in range(len(f)):
-            e = (f[k], f[(k + 1) % len(f)])
-            edges[e] = edges.get(e, 0) + 1
-    bad = sum(1 for e, c in edges.items() if c != 1 or edges.get((e[1], e[0]), 0) != 1)
+    bad, t_junctions = _closure_problems(vertices, faces)
     if bad:
         problems.append("%d edges not shared by exactly two faces in opposite directions "
                         "(open mesh or inconsistent orientation)" % bad)
@@ -73,21 +116,15 @@ def block_report(vertices, faces):
             problems.append("a face has zero area")
             continue
         n = (n[0] / ln, n[1] / ln, n[2] / ln)
+        mean = tuple(sum(p[i] for p in pts) / len(pts) for i in range(3))
         for p in pts:
-            warp = max(warp, abs(_dot(_sub(p, pts[0]), n)))
-    return vol, cen, warp, problems
+            warp = max(warp, abs(_dot(_sub(p, mean), n)))
+    return vol, cen, warp, problems, t_junctions
 
 
 # --------------------------------------------------------------------------------------------
-# COMPAS data access
+# Mesh data
 # --------------------------------------------------------------------------------------------
-
-def unwrap(x):
-    """Strip COMPAS {"dtype", "data", "guid"} wrappers."""
-    while isinstance(x, dict) and "dtype" in x and "data" in x:
-        x = x["data"]
-    return x
-
 
 def _point(p):
     p = unwrap(p)
@@ -104,123 +141,113 @@ def _key_order(k):
         return (1, 0, str(k))
 
 
-def find_graph(doc):
-    """The graph data dict ({"node": ..., "edge": ...}) of an assembly document."""
-    if not isinstance(doc, dict):
-        raise ConversionError("top level is a %s, not a COMPAS data object" % type(doc).__name__)
-    if "courses" in doc and "basecurve" in doc:
-        n = len(doc.get("courses", []))
-        dtypes = sorted({unwrap_dtype(b) for c in doc["courses"] for b in c})
-        raise ConversionError(
-            "not an assembly: a compas_assembly example input (params, basecurve and %d courses "
-            "of %s) that the example script turns into an assembly; its courses are not stacked "
-            "(all at z = 0), so blocks would overlap. Convert the assembled result instead "
-            "(wall_assembly.json for the running-bond wall)." % (n, ", ".join(dtypes)))
-    dtype = doc.get("dtype", "")
-    data = unwrap(doc)
-    if isinstance(data, dict) and "graph" in data:
-        g = unwrap(data["graph"])
-    elif isinstance(data, dict) and "node" in data:
-        g = data
-    else:
-        raise ConversionError("no assembly graph found (dtype %r, keys %s)"
-                              % (dtype, sorted(data)[:10] if isinstance(data, dict) else "-"))
-    if not isinstance(g, dict) or "node" not in g:
-        raise ConversionError("the graph has no 'node' entries (dtype %r)" % dtype)
-    return dtype, data, g
+def mesh_geometry(mesh, key, info):
+    """(vertices, faces) of a COMPAS mesh's data, vertices renumbered 0..n-1 in key order, unused
+    ones dropped, repeated consecutive vertices and degenerate faces removed."""
+    if "vertex" in mesh:
+        vmap = {str(k): v for k, v in mesh["vertex"].items()}
+        fmap = mesh["face"]
+        fkeys = sorted(fmap, key=_key_order)
+        polygons = [[str(v) for v in fmap[fk]] for fk in fkeys]
+    else:  # polyhedron data: lists
+        vmap = {str(i): v for i, v in enumerate(mesh["vertices"])}
+        fkeys = list(range(len(mesh["faces"])))
+        polygons = [[str(v) for v in f] for f in mesh["faces"]]
+    used = set(v for f in polygons for v in f)
+    missing = used - set(vmap)
+    if missing:
+        raise ConversionError("node %s: faces use undefined vertices %s" % (key, sorted(missing)[:5]))
+    vkeys = [k for k in sorted(vmap, key=_key_order) if k in used]
+    info["dropped_vertices"] += len(vmap) - len(vkeys)
+    index = {k: i for i, k in enumerate(vkeys)}
+    vertices = [_point(vmap[k]) for k in vkeys]
+    faces = []
+    for fk, polygon in zip(fkeys, polygons):
+        f = [index[v] for v in polygon]
+        f = [v for i, v in enumerate(f) if v != f[i - 1]] if len(f) > 1 else f
+        if len(set(f)) < 3:
+            info["problems"].append("node %s: face %s degenerate, dropped" % (key, fk))
+            continue
+        faces.append(f)
+    return vertices, faces
 
 
-def unwrap_dtype(x):
-    return x.get("dtype", "?") if isinstance(x, dict) else type(x).__name__
+# --------------------------------------------------------------------------------------------
+# Supports by contact with the ground
+# --------------------------------------------------------------------------------------------
 
-
-def mesh_of(node):
-    """(vertex dict, face dict) of a node's block mesh."""
-    blk = node.get("block")
-    if blk is None:
-        raise ConversionError("node has no 'block'")
-    m = unwrap(blk)
-    if not isinstance(m, dict) or "vertex" not in m or "face" not in m:
-        raise ConversionError("block is not a COMPAS mesh (dtype %r)" % unwrap_dtype(blk))
-    return m, m["vertex"], m["face"]
+def ground_contacts(blocks, joint_tolerance, angle_tolerance):
+    """Ids of the blocks that rest on the ground plane, the horizontal plane through the model's
+    lowest point: blocks with a face that faces down (outward normal within angle_tolerance
+    degrees of -z) and whose every corner is within joint_tolerance times the face's diameter
+    of that plane, the test rbla's interface detection would apply between the face and a slab
+    on the ground. Feet that CAD left a few millimetres up, or warped, still count; a block that
+    only touches the ground with an edge or a corner does not."""
+    z0 = min(v[2] for b in blocks for v in b["vertices"])
+    cos_limit = math.cos(math.radians(angle_tolerance))
+    resting = []
+    for b in blocks:
+        V = b["vertices"]
+        for f in b["faces"]:
+            pts = [V[i] for i in f]
+            n = newell_normal(pts)
+            ln = math.sqrt(_dot(n, n))
+            if ln == 0.0 or -n[2] / ln < cos_limit:
+                continue
+            diameter = max(math.sqrt(_dot(_sub(p, q), _sub(p, q))) for p in pts for q in pts)
+            if max(abs(p[2] - z0) for p in pts) <= joint_tolerance * diameter:
+                resting.append(b["id"])
+                break
+    return z0, resting
 
 
 # --------------------------------------------------------------------------------------------
 # Conversion
 # --------------------------------------------------------------------------------------------
 
-def convert(doc, name="", supports=(), fix_lowest=False, with_interfaces=False,
-            unit_weight=18.0, friction=0.6, fix_orientation=False, log=None):
-    """Return (model dict, info dict) for a parsed COMPAS assembly document."""
-    if log is None:
-        def log(msg):
-            sys.stderr.write(msg + "\n")
-    dtype, data, g = find_graph(doc)
-    defaults = g.get("default_node_attributes") or {}
-    default_support = bool(defaults.get("is_support", False))
-    nodes = g["node"]
-    if not nodes:
-        raise ConversionError("the assembly has no nodes")
-    info = {"dtype": dtype, "blocks": 0, "supports_from_file": [], "supports_added": [],
-            "volume_negative": [], "reversed": [], "max_face_warp": 0.0, "problems": [],
-            "interfaces": 0, "dropped_vertices": 0}
-    blocks = []
-    centroids = {}
-    zmins = {}
-    for key in sorted(nodes, key=_key_order):
-        node = nodes[key] or {}
-        try:
-            mesh, vmap, fmap = mesh_of(node)
-        except ConversionError as e:
-            raise ConversionError("node %s: %s" % (key, e))
-        fkeys = sorted(fmap, key=_key_order)
-        used = set()
-        for fk in fkeys:
-            used.update(str(v) for v in fmap[fk])
-        vkeys = [k for k in sorted(vmap, key=_key_order) if str(k) in used]
-        missing = used - set(str(k) for k in vmap)
-        if missing:
-            raise ConversionError("node %s: faces use undefined vertices %s"
-                                  % (key, sorted(missing)[:5]))
-        info["dropped_vertices"] += len(vmap) - len(vkeys)
-        index = {str(k): i for i, k in enumerate(vkeys)}
-        vertices = [_point(vmap[k]) for k in vkeys]
-        faces = []
-        for fk in fkeys:
-            f = [index[str(v)] for v in fmap[fk]]
-            # drop repeated consecutive vertices (zero-length edges)
-            f = [v for i, v in enumerate(f) if v != f[i - 1]] if len(f) > 1 else f
-            if len(set(f)) < 3:
-                info["problems"].append("node %s: face %s degenerate, dropped" % (key, fk))
-                continue
-            faces.append(f)
-        vol, cen, warp, problems = block_report(vertices, faces)
-        if vol <= 0.0:
-            info["volume_negative"].append(str(key))
-            if fix_orientation:
-                faces = [list(reversed(f)) for f in faces]
-                vol, cen, warp, problems = block_report(vertices, faces)
-                info["reversed"].append(str(key))
-        info["max_face_warp"] = max(info["max_face_warp"], warp)
-        for p in problems:
-            info["problems"].append("node %s: %s" % (key, p))
-        is_support = bool(node.get("is_support", default_support))
-        if is_support:
-            info["supports_from_file"].append(str(key))
-        b = {"id": str(key)}
-        label = mesh.get("name") or (mesh.get("attributes") or {}).get("name")
-        if isinstance(label, str) and label:
-            b["label"] = label
-        b["role"] = "fixed" if is_support else "free"
-        b["vertices"] = vertices
-        b["faces"] = faces
-        b["centroid"] = [round(c, 12) + 0.0 for c in cen]
-        if vol > 0.0:
-            b["volume"] = vol
-        blocks.append(b)
-        centroids[str(key)] = cen
-        zmins[str(key)] = min(v[2] for v in vertices)
+def _example_input_error(doc):
+    if isinstance(doc, dict) and "courses" in doc and "basecurve" in doc:
+        n = len(doc.get("courses", []))
+        dtypes = sorted({x.get("dtype", "?") if isinstance(x, dict) else type(x).__name__
+                         for c in doc["courses"] for x in c})
+        raise ConversionError(
+            "not an assembly: a compas_assembly example input (params, basecurve and %d courses "
+            "of %s) that the example script turns into an assembly; its courses are not stacked "
+            "(all at z = 0), so blocks would overlap. Convert the assembled result instead "
+            "(wall_assembly.json for the running-bond wall)." % (n, ", ".join(dtypes)))
 
+
+def _make_block(key, mesh, attr, wrapper, default_support, fix_orientation, info):
+    vertices, faces = mesh_geometry(mesh, key, info)
+    vol, cen, warp, problems, t_junctions = block_report(vertices, faces)
+    if vol <= 0.0:
+        info["volume_negative"].append(key)
+        if fix_orientation:
+            faces = [list(reversed(f)) for f in faces]
+            vol, cen, warp, problems, t_junctions = block_report(vertices, faces)
+            info["reversed"].append(key)
+    info["max_face_warp"] = max(info["max_face_warp"], warp)
+    if t_junctions:
+        info["t_junctions"].append(key)
+    info["problems"].extend("node %s: %s" % (key, p) for p in problems)
+    is_support = bool(attr.get("is_support", default_support))
+    if is_support:
+        info["supports_from_file"].append(key)
+    b = {"id": key}
+    label = (wrapper.get("name") if isinstance(wrapper, dict) else None) or mesh.get("name") or \
+        (mesh.get("attributes") or {}).get("name")
+    if isinstance(label, str) and label:
+        b["label"] = label
+    b["role"] = "fixed" if is_support else "free"
+    b["vertices"] = vertices
+    b["faces"] = faces
+    b["centroid"] = [round(c, 12) + 0.0 for c in cen]
+    if vol > 0.0:
+        b["volume"] = vol
+    return b
+
+
+def _apply_supports(blocks, supports, ground, info):
     by_id = {b["id"]: b for b in blocks}
     for s in supports:
         if s not in by_id:
@@ -229,47 +256,69 @@ def convert(doc, name="", supports=(), fix_lowest=False, with_interfaces=False,
         if by_id[s]["role"] != "fixed":
             by_id[s]["role"] = "fixed"
             info["supports_added"].append(s)
-    if fix_lowest:
-        lo = min(zmins.values())
-        hi = max(max(v[2] for v in b["vertices"]) for b in blocks)
-        tol = 1e-3 * max(hi - lo, 1e-9)
-        for k, z in sorted(zmins.items(), key=lambda t: _key_order(t[0])):
-            if z <= lo + tol and by_id[k]["role"] != "fixed":
-                by_id[k]["role"] = "fixed"
-                info["supports_added"].append(k)
+    use_ground = ground == "always" or (ground == "auto" and not any(b["role"] == "fixed" for b in blocks))
+    if not use_ground:
+        return
+    joint_tolerance, angle_tolerance = detection_defaults()
+    info["ground_level"], resting = ground_contacts(blocks, joint_tolerance, angle_tolerance)
+    info["ground_contacts"] = resting
+    if len(resting) == len(blocks):
+        return
+    for k in resting:
+        if by_id[k]["role"] != "fixed":
+            by_id[k]["role"] = "fixed"
+            info["supports_added"].append(k)
 
+
+def _stored_interfaces(asm, centroids, info):
+    interfaces = []
+    for u, v, polygons in sorted(asm.edges, key=lambda e: (_key_order(e[0]), _key_order(e[1]))):
+        for k, raw in enumerate(polygons):
+            pts = [_point(p) for p in raw]
+            if len(pts) < 3:
+                info["problems"].append("edge %s-%s: interface %d has %d points, skipped" % (u, v, k, len(pts)))
+                continue
+            if u not in centroids or v not in centroids:
+                info["problems"].append("edge %s-%s: unknown node, skipped" % (u, v))
+                continue
+            # normal from blocks[0] into blocks[1]: orient the polygon so its right-hand normal
+            # points from u's centroid side to v's
+            if _dot(newell_normal(pts), _sub(centroids[v], centroids[u])) < 0.0:
+                pts = list(reversed(pts))
+            interfaces.append({"id": "I%s-%s-%d" % (u, v, k), "blocks": [u, v], "polygon": pts})
+    return interfaces
+
+
+def convert(doc, name="", supports=(), ground="auto", with_interfaces=False,
+            unit_weight=18.0, friction=0.6, fix_orientation=False, fix_lowest=False):
+    """Return (model dict, info dict) for a parsed COMPAS document.
+
+    ground: "auto" finds supports by contact with the ground plane (ground_contacts) when the file
+    marks none, "always" also when it does, "never" not at all. fix_lowest=True is the old name
+    of ground="always"."""
+    if fix_lowest:
+        ground = "always"
+    _example_input_error(doc)
+    asm = read_assembly(doc)
+    info = {"dtype": asm.dtype, "layout": asm.layout, "blocks": 0, "supports_from_file": [],
+            "supports_added": [], "ground_contacts": [], "ground_level": None, "volume_negative": [],
+            "reversed": [], "t_junctions": [], "max_face_warp": 0.0, "problems": [], "interfaces": 0,
+            "dropped_vertices": 0}
+    blocks = [_make_block(key, mesh, attr, wrapper, asm.default_support, fix_orientation, info)
+              for key, mesh, attr, wrapper in sorted(asm.nodes, key=lambda n: _key_order(n[0]))]
+    _apply_supports(blocks, supports, ground, info)
+    kind = (asm.dtype.split("/")[-1] if asm.dtype else "") or asm.layout
     model = {
         "schema_version": SCHEMA_VERSION,
-        "title": ("%s (converted from COMPAS %s)" % (name, dtype.split("/")[-1] or "assembly")).strip(),
+        "title": ("%s (converted from COMPAS %s)" % (name, kind)).strip(),
         "units": {"length": "m", "force": "kN", "unit_weight": "kN/m3"},
         "gravity": "-z",
         "defaults": {"unit_weight": unit_weight, "friction": friction},
         "blocks": blocks,
     }
-
     if with_interfaces:
-        interfaces = []
-        for u, nbrs in sorted((g.get("edge") or {}).items(), key=lambda t: _key_order(t[0])):
-            for v, attr in sorted((nbrs or {}).items(), key=lambda t: _key_order(t[0])):
-                ifs = (attr or {}).get("interfaces") or []
-                for k, itf in enumerate(ifs):
-                    d = unwrap(itf)
-                    pts = [_point(p) for p in d.get("points") or []]
-                    if len(pts) < 3:
-                        info["problems"].append("edge %s-%s: interface %d has %d points, skipped"
-                                                % (u, v, k, len(pts)))
-                        continue
-                    n = newell_normal(pts)
-                    a, b = str(u), str(v)
-                    if a not in centroids or b not in centroids:
-                        info["problems"].append("edge %s-%s: unknown node, skipped" % (u, v))
-                        continue
-                    # normal from blocks[0] into blocks[1]: orient the polygon so its
-                    # right-hand normal points from a's centroid side to b's
-                    if _dot(n, _sub(centroids[b], centroids[a])) < 0.0:
-                        pts = list(reversed(pts))
-                    interfaces.append({"id": "I%s-%s-%d" % (a, b, k), "blocks": [a, b],
-                                       "polygon": pts})
+        centroids = {b["id"]: b["centroid"] for b in blocks}
+        interfaces = _stored_interfaces(asm, centroids, info)
         if interfaces:
             model["interfaces"] = interfaces
         info["interfaces"] = len(interfaces)
@@ -298,15 +347,52 @@ def dumps_model(model, compact=False):
     return "\n".join(lines) + "\n"
 
 
+def _report(path, model, info, with_interfaces):
+    """The converter's messages on standard error; returns the exit status."""
+    fixed = [b["id"] for b in model["blocks"] if b["role"] == "fixed"]
+    msg = ("%s: %s, %d blocks (%d fixed: %s); max face warp %.2g m"
+           % (path, info["layout"] + (" " + info["dtype"] if info["dtype"] else ""), info["blocks"],
+              len(fixed), ",".join(fixed) or "-", info["max_face_warp"]))
+    if with_interfaces:
+        msg += "; %d interfaces written" % info["interfaces"]
+    if info["dropped_vertices"]:
+        msg += "; %d unused vertices dropped" % info["dropped_vertices"]
+    sys.stderr.write(msg + "\n")
+    if info["ground_level"] is not None:
+        sys.stderr.write("%s: supports by contact with the ground plane z = %.6g m: %d blocks rest on it (%s)\n"
+                         % (path, info["ground_level"], len(info["ground_contacts"]),
+                            ",".join(info["ground_contacts"]) or "-"))
+    if not fixed:
+        why = ("every block rests on the ground plane, so none was made fixed by contact"
+               if info["ground_contacts"] and len(info["ground_contacts"]) == info["blocks"]
+               else "no is_support node and no block resting on the ground plane")
+        sys.stderr.write("%s: warning: no support (%s); rbla will find that the structure cannot stand. "
+                         "Use --support KEY.\n" % (path, why))
+    if info["t_junctions"]:
+        sys.stderr.write("%s: note: blocks %s have vertices on other faces' edges (faces split into pieces); "
+                         "accepted\n" % (path, ",".join(info["t_junctions"][:20])))
+    if info["volume_negative"]:
+        sys.stderr.write("%s: warning: blocks %s have negative volume from their faces (inward faces)%s\n"
+                         % (path, ",".join(info["volume_negative"]),
+                            "; reversed" if info["reversed"] else "; use --fix-orientation"))
+    for pr in info["problems"][:20]:
+        sys.stderr.write("%s: warning: %s\n" % (path, pr))
+    bad = (info["volume_negative"] and not info["reversed"]) or any(
+        "not shared" in pr or "zero area" in pr for pr in info["problems"])
+    return 2 if bad else 0
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(prog="python3 -m rbla_cad.compas_import",
-                                description="Convert a COMPAS assembly JSON file to an rbla model.")
-    p.add_argument("input", help="COMPAS assembly JSON file")
+                                description="Convert a COMPAS assembly (or meshes) JSON file to an rbla model.")
+    p.add_argument("input", help="COMPAS JSON file (COMPAS 1 or 2)")
     p.add_argument("-o", "--output", default=None, help="rbla model JSON (default stdout)")
     p.add_argument("--support", action="append", default=[],
                    help="node key(s) to make fixed, comma-separated; repeatable")
-    p.add_argument("--fix-lowest", action="store_true",
-                   help="make fixed every block whose lowest point is at the model's lowest z")
+    p.add_argument("--ground", choices=["auto", "always", "never"], default="auto",
+                   help="make fixed the blocks resting on the ground plane (the model's lowest level): "
+                        "auto when the file marks no support, always, or never (default auto)")
+    p.add_argument("--fix-lowest", action="store_true", help="the same as --ground always")
     p.add_argument("--interfaces", action="store_true",
                    help="write the interfaces stored on the graph edges (default: let rbla detect)")
     p.add_argument("--fix-orientation", action="store_true",
@@ -325,7 +411,8 @@ def main(argv=None):
         return 1
     supports = [s.strip() for arg in args.support for s in arg.split(",") if s.strip()]
     try:
-        model, info = convert(doc, name=name, supports=supports, fix_lowest=args.fix_lowest,
+        model, info = convert(doc, name=name, supports=supports,
+                              ground="always" if args.fix_lowest else args.ground,
                               with_interfaces=args.interfaces, unit_weight=args.unit_weight,
                               friction=args.friction, fix_orientation=args.fix_orientation)
     except ConversionError as e:
@@ -338,30 +425,11 @@ def main(argv=None):
         d = os.path.dirname(args.output)
         if d:
             os.makedirs(d, exist_ok=True)
-        with open(args.output, "w", encoding="utf-8") as fh:
+        tmp = args.output + ".tmp"
+        with open(tmp, "w", encoding="utf-8") as fh:
             fh.write(text)
-    fixed = [b["id"] for b in model["blocks"] if b["role"] == "fixed"]
-    msg = ("%s: %d blocks (%d fixed: %s), %s; max face warp %.2g m"
-           % (args.input, info["blocks"], len(fixed), ",".join(fixed) or "-", info["dtype"],
-              info["max_face_warp"]))
-    if args.interfaces:
-        msg += "; %d interfaces written" % info["interfaces"]
-    if info["dropped_vertices"]:
-        msg += "; %d unused vertices dropped" % info["dropped_vertices"]
-    sys.stderr.write(msg + "\n")
-    if not fixed:
-        sys.stderr.write("%s: warning: no support (no is_support node); rbla will find that the "
-                         "structure cannot stand. Use --support KEY or --fix-lowest.\n" % args.input)
-    if info["volume_negative"]:
-        sys.stderr.write("%s: warning: blocks %s have negative volume from their faces (inward "
-                         "faces)%s\n" % (args.input, ",".join(info["volume_negative"]),
-                                         "; reversed" if info["reversed"] else
-                                         "; use --fix-orientation"))
-    for pr in info["problems"][:20]:
-        sys.stderr.write("%s: warning: %s\n" % (args.input, pr))
-    bad = (info["volume_negative"] and not info["reversed"]) or any(
-        "not shared" in pr or "zero area" in pr for pr in info["problems"])
-    return 2 if bad else 0
+        os.replace(tmp, args.output)
+    return _report(args.input, model, info, args.interfaces)
 
 
 if __name__ == "__main__":

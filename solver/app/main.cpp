@@ -134,6 +134,44 @@ int write_output(const std::string& path, const std::string& text) {
   return kSuccess;
 }
 
+/// What detection did, for `rbla info`: tolerances, the spread over accepted joints, near misses.
+void print_detection(const rbla::model::Model& m, std::ostream& out) {
+  const rbla::model::DetectionSummary& s = m.detection_summary;
+  if (!s.ran) return;
+  std::ostringstream line;
+  line << std::setprecision(3);
+  if (s.per_joint) {
+    line << s.joint_tolerance * 100.0 << " % of each joint's size";
+    if (s.distance_tolerances.count > 0) {
+      line << " (" << rbla::model::length_text(s.distance_tolerances.min, m.units) << " to "
+           << rbla::model::length_text(s.distance_tolerances.max, m.units) << " here)";
+    }
+  } else {
+    line << rbla::model::length_text(s.fixed_distance, m.units) << " for every joint (set in the model)";
+  }
+  line << ", angle " << s.angle_tolerance_degrees << " deg; " << s.merged_faces << " split faces merged";
+  out << "detection:       " << line.str() << "\n";
+  if (s.gaps.count > 0) {
+    std::ostringstream spread;
+    spread << std::setprecision(3) << "gap " << rbla::model::length_text(s.gaps.min, m.units) << " / "
+           << rbla::model::length_text(s.gaps.median, m.units) << " / " << rbla::model::length_text(s.gaps.max, m.units) << " (at most "
+           << 100.0 * s.largest_gap_fraction << " % of its tolerance), angle " << s.angles.min << " / "
+           << s.angles.median << " / " << s.angles.max << " deg";
+    out << "accepted joints: " << spread.str() << " (min / median / max)\n";
+  }
+  out << "near misses:     " << s.near_misses_total;
+  if (!m.near_misses.empty()) {
+    const rbla::model::NearMiss& n = m.near_misses.front();
+    std::ostringstream closest;
+    closest << std::setprecision(3) << " (closest: '" << m.blocks[n.block_a].id << "' face " << n.face_a << " and '"
+            << m.blocks[n.block_b].id << "' face " << n.face_b << ", " << rbla::model::length_text(n.distance, m.units)
+            << " apart where " << rbla::model::length_text(n.distance_tolerance, m.units) << " is accepted, at "
+            << n.angle_degrees << " deg; all listed by -o)";
+    out << closest.str();
+  }
+  out << "\n";
+}
+
 /// Before any work: every output must be writable by the rules of io/atomic_file.hpp, none may be
 /// the model, and no two may be one file. Throws io::FileError. Returns true when an output goes to
 /// standard output: what would be printed there (the verdict) then goes to standard error, so
@@ -175,8 +213,9 @@ int run_info(const CommonOptions& options) {
       << "analysis:        " << rbla::model::to_string(m.analysis.type) << ", "
       << rbla::model::to_string(m.analysis.friction_model) << ", cone " << rbla::model::to_string(m.analysis.cone)
       << "\n"
-      << "warnings:        " << m.warnings.size() << "\n"
-      << "model stage:     " << seconds_text(loaded.timings.total_seconds) << " (read "
+      << "warnings:        " << m.warnings.size() << "\n";
+  print_detection(m, out);
+  out << "model stage:     " << seconds_text(loaded.timings.total_seconds) << " (read "
       << seconds_text(loaded.timings.read_seconds) << ", validate " << seconds_text(loaded.timings.validate_seconds)
       << ", geometry " << seconds_text(loaded.timings.geometry_seconds) << ", detection "
       << seconds_text(loaded.timings.detect_seconds) << ")\n";

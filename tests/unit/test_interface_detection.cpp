@@ -112,8 +112,9 @@ TEST(InterfaceDetection, UShapedFaceOverBarGivesTwoInterfaces) {
 }
 
 TEST(InterfaceDetection, NearlyCoplanarInsideAndOutsideTolerance) {
-  // Default tolerance: 1e-4 of the bounding-box diagonal (about 3.3 m here, so 3.3e-4 m).
-  for (const auto& [gap, expected] : {std::pair{1e-5, 1u}, std::pair{2e-4, 1u}, std::pair{1e-3, 0u}, std::pair{1e-2, 0u}}) {
+  // Default tolerance: 3 % of the diameter of the smaller face (the 1 m square: sqrt(2) m), 42.4 mm.
+  for (const auto& [gap, expected] : {std::pair{1e-5, 1u}, std::pair{0.03, 1u}, std::pair{0.042, 1u},
+                                      std::pair{0.043, 0u}, std::pair{0.1, 0u}}) {
     const Model m = load(model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"),
                                                  box_block("B1", 0, 0, gap, 1, 1, 2)})));
     EXPECT_EQ(m.interfaces.size(), expected) << "gap " << gap;
@@ -122,8 +123,9 @@ TEST(InterfaceDetection, NearlyCoplanarInsideAndOutsideTolerance) {
 
 TEST(InterfaceDetection, ExplicitDistanceToleranceOverridesRelative) {
   json model = model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"),
-                                       box_block("B1", 0, 0, 0.01, 1, 1, 2)}));
-  model["detection"] = {{"distance_tolerance", 0.02}};
+                                       box_block("B1", 0, 0, 0.05, 1, 1, 2)}));
+  EXPECT_EQ(load(model).interfaces.size(), 0u);  // 50 mm: beyond the joint's 42.4 mm
+  model["detection"] = {{"distance_tolerance", 0.06}};
   EXPECT_EQ(load(model).interfaces.size(), 1u);
 }
 

@@ -64,9 +64,9 @@ TEST(WarningSummary, ResultListIsBoundedPerCodeAndKeepsTheWorst) {
 }
 
 // A barrel vault of 184 voussoirs (1104 faces) with every vertex moved by up to +-3 mm: many
-// faces are warped beyond the distance tolerance. Whatever the verdict (detection may lose joints
-// to that noise), a run prints at most 20 lines on standard error (the bound), the
-// warning counts there and in the result agree, and -v prints each warning.
+// faces are warped. Whatever the verdict, a run prints at most 20 lines on standard error (the
+// issue's bound), and the warped faces are at most two warnings (within the joint tolerance,
+// beyond it) that count them all, in the result as on standard error.
 TEST(WarningSummary, NoisyVaultRunPrintsAtMostTwentyLines) {
   const fs::path dir = fs::temp_directory_path() / ("rbla_warnings_" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -87,24 +87,17 @@ TEST(WarningSummary, NoisyVaultRunPrintsAtMostTwentyLines) {
 
   std::ifstream in(dir / "r.json");
   const nlohmann::json result = nlohmann::json::parse(in);
-  std::size_t warped = 0;
-  for (const auto& kind : result.at("warning_summary")) {
-    if (kind["code"] == "non_planar_face") warped = kind["count"].get<std::size_t>();
+  std::size_t entries = 0, warped = 0;
+  for (const auto& warning : result["warnings"]) {
+    if (warning["code"] != "non_planar_face") continue;
+    ++entries;
+    const std::string message = warning["message"];
+    warped += std::stoul(message.substr(0, message.find(' ')));  // "N faces are not planar, ..."
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
   }
-  ASSERT_GT(warped, rbla::io::kMaxWarningsPerCode) << "the noise should warp many faces";
-  EXPECT_NE(r.output.find("[non_planar_face] " + std::to_string(warped) + " times; the worst"), std::string::npos)
-      << r.output;
-  std::size_t listed = 0;
-  for (const auto& warning : result["warnings"]) listed += warning["code"] == "non_planar_face" ? 1 : 0;
-  EXPECT_EQ(listed, rbla::io::kMaxWarningsPerCode);
-
-  const auto verbose = rbla::testing::run_rbla("validate -v " + (dir / "vault.json").string());
-  std::size_t each = 0;
-  for (auto at = verbose.output.find("[non_planar_face] at"); at != std::string::npos;
-       at = verbose.output.find("[non_planar_face] at", at + 1)) {
-    ++each;
-  }
-  EXPECT_EQ(each, warped);
+  EXPECT_GE(entries, 1u);
+  EXPECT_LE(entries, 2u);
+  EXPECT_GT(warped, rbla::io::kMaxWarningsPerCode) << "the noise should warp many faces";
   fs::remove_all(dir);
 }
 

@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <numeric>
 #include <set>
+#include <tuple>
 
 namespace rbla::geometry {
 
@@ -21,140 +24,342 @@ void local_frame(const Vec3& normal, Vec3& tangent1, Vec3& tangent2) {
   tangent2 = normal.cross(tangent1);
 }
 
+double DetectionTolerances::distance(double size_a, double size_b) const {
+  return per_joint ? joint_fraction * std::min(size_a, size_b) : fixed_distance;
+}
+
+PatchLimits DetectionTolerances::patch_limits() const {
+  // Faces split by an export lie in one plane up to CAD noise, or crease along a diagonal by a
+  // warp of a fraction of the joint tolerance; real facets of a curve meet at larger angles
+  // (merging a 3.7 cm facet into its 9.5 degree neighbour moved a contact by 4 cm in the
+  // 30000-block church). Hence a quarter of the angle and a third of the distance tolerance.
+  PatchLimits limits;
+  limits.angle_degrees = 0.25 * angle_degrees;
+  limits.flatness_fraction = joint_fraction / 3.0;
+  limits.flatness_fixed = per_joint ? -1.0 : fixed_distance / 3.0;
+  limits.triangle_pair_angle_degrees = angle_degrees;
+  limits.triangle_pair_flatness_fraction = joint_fraction;
+  limits.triangle_pair_flatness_fixed = per_joint ? -1.0 : fixed_distance;
+  return limits;
+}
+
+DetectionTolerances DetectionTolerances::of(const model::Model& model) {
+  DetectionTolerances t;
+  const model::DetectionSettings& s = model.detection;
+  t.per_joint = !s.distance_tolerance && !s.relative_tolerance;
+  t.joint_fraction = s.joint_tolerance;
+  t.fixed_distance = t.per_joint ? 0.0 : model.distance_tolerance();
+  t.angle_degrees = s.angle_tolerance_degrees;
+  return t;
+}
+
+model::Spread spread_of(std::vector<double>& values) {
+  model::Spread s;
+  s.count = values.size();
+  if (values.empty()) return s;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  s.median = *middle;
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  s.min = *lo;
+  s.max = *hi;
+  return s;
+}
+
+Vec3 given_interface_normal(const model::Model& m, int a, int b, const Vec3& n, const Vec3& c, double tolerance) {
+  const model::Block& block = m.blocks[a];
+  const double cos_limit = std::cos(10.0 * M_PI / 180.0);
+  double best = std::numeric_limits<double>::infinity();
+  Vec3 normal = Vec3::Zero();
+  for (const auto& face : block.faces) {
+    const FaceGeometry g = face_geometry(block.vertices, face);
+    const double distance = std::abs(g.normal.dot(c - g.centroid));
+    if (std::abs(g.normal.dot(n)) < cos_limit || distance > tolerance || distance >= best) continue;
+    Vec3 t1, t2;
+    local_frame(g.normal, t1, t2);
+    Polygon2 outline;
+    for (const int i : face) outline.emplace_back(block.vertices[i].dot(t1), block.vertices[i].dot(t2));
+    if (!contains(outline, Point2(c.dot(t1), c.dot(t2)), tolerance)) continue;
+    best = distance;
+    normal = g.normal.dot(n) > 0.0 ? n : Vec3(-n);
+  }
+  if (best < std::numeric_limits<double>::infinity()) return normal;
+  return n.dot(m.blocks[b].centroid - block.centroid) < 0.0 ? Vec3(-n) : n;
+}
+
 namespace {
 
-struct Box {
-  Vec3 min, max;
+struct BlockPatches {
+  std::vector<FacePatch> patches;
+  Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();
+  double pad = 0.0;  // m: the largest near-miss range of its patches
 };
 
-struct FaceRecord {
-  FaceGeometry geometry;
-  Box box;
-};
-
-bool overlaps(const Box& a, const Box& b, double pad) {
-  return (a.min.array() <= b.max.array() + pad).all() && (b.min.array() <= a.max.array() + pad).all();
+bool boxes_overlap(const Vec3& a_min, const Vec3& a_max, const Vec3& b_min, const Vec3& b_max, double pad) {
+  return (a_min.array() <= b_max.array() + pad).all() && (b_min.array() <= a_max.array() + pad).all();
 }
 
-Box box_of(const std::vector<Vec3>& points, const std::vector<int>& indices) {
-  Box box{points[indices[0]], points[indices[0]]};
-  for (int i : indices) {
-    box.min = box.min.cwiseMin(points[i]);
-    box.max = box.max.cwiseMax(points[i]);
-  }
-  return box;
-}
-
-}  // namespace
-
-std::vector<model::ContactInterface> detect_interfaces(const model::Model& model, double tolerance,
-                                                        const model::DetectionSettings& settings,
-                                                        const std::vector<std::pair<int, int>>& skip_pairs,
-                                                        DetectionStats* stats) {
-  const int num_blocks = static_cast<int>(model.blocks.size());
-  std::vector<Box> block_boxes(num_blocks);
-  std::vector<std::vector<FaceRecord>> faces(num_blocks);
-  for (int b = 0; b < num_blocks; ++b) {
-    const model::Block& block = model.blocks[b];
-    std::vector<int> all(block.vertices.size());
-    std::iota(all.begin(), all.end(), 0);
-    block_boxes[b] = box_of(block.vertices, all);
-    faces[b].reserve(block.faces.size());
-    for (const auto& face : block.faces) {
-      faces[b].push_back({face_geometry(block.vertices, face), box_of(block.vertices, face)});
+std::vector<BlockPatches> all_patches(const model::Model& m, const DetectionTolerances& tol, std::size_t& merged) {
+  std::vector<BlockPatches> out(m.blocks.size());
+  const PatchLimits limits = tol.patch_limits();
+  merged = 0;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    BlockPatches& bp = out[b];
+    bp.patches = face_patches(m.blocks[b], limits);
+    bp.box_min = bp.box_max = m.blocks[b].vertices[0];
+    for (const Vec3& v : m.blocks[b].vertices) {
+      bp.box_min = bp.box_min.cwiseMin(v);
+      bp.box_max = bp.box_max.cwiseMax(v);
+    }
+    for (const FacePatch& p : bp.patches) {
+      bp.pad = std::max(bp.pad, kNearMissFactor * tol.distance(p.size, p.size));
+      merged += p.faces.size() - 1;
     }
   }
+  return out;
+}
 
-  // Broad phase: sweep along the axis with the largest extent.
-  const model::BoundingBox extent = model.bounding_box();
+/// Broad phase: block pairs (a < b, not two supports) whose boxes overlap once padded by the
+/// smaller of their two pads (a joint's tolerance follows its smaller face, so a base slab's large
+/// pad does not widen the search around every block on it), sorted.
+std::vector<std::pair<int, int>> candidate_pairs(const model::Model& m, const std::vector<BlockPatches>& bp) {
+  const int n = static_cast<int>(bp.size());
+  const model::BoundingBox extent = m.bounding_box();
   int axis = 0;
   (extent.max - extent.min).maxCoeff(&axis);
-  std::vector<int> order(num_blocks);
+  std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return block_boxes[a].min[axis] < block_boxes[b].min[axis] ||
-           (block_boxes[a].min[axis] == block_boxes[b].min[axis] && a < b);
+    return bp[a].box_min[axis] < bp[b].box_min[axis] || (bp[a].box_min[axis] == bp[b].box_min[axis] && a < b);
   });
   std::vector<std::pair<int, int>> candidates;
-  for (int i = 0; i < num_blocks; ++i) {
+  for (int i = 0; i < n; ++i) {
     const int a = order[i];
-    for (int j = i + 1; j < num_blocks; ++j) {
+    for (int j = i + 1; j < n; ++j) {
       const int b = order[j];
-      if (block_boxes[b].min[axis] > block_boxes[a].max[axis] + tolerance) break;
-      if (model.blocks[a].is_support() && model.blocks[b].is_support()) continue;
-      if (!overlaps(block_boxes[a], block_boxes[b], tolerance)) continue;
+      if (bp[b].box_min[axis] > bp[a].box_max[axis] + bp[a].pad) break;
+      if (m.blocks[a].is_support() && m.blocks[b].is_support()) continue;
+      if (!boxes_overlap(bp[a].box_min, bp[a].box_max, bp[b].box_min, bp[b].box_max, std::min(bp[a].pad, bp[b].pad))) {
+        continue;
+      }
       candidates.emplace_back(std::min(a, b), std::max(a, b));
     }
   }
   std::sort(candidates.begin(), candidates.end());  // deterministic output order
-  const std::set<std::pair<int, int>> skip(skip_pairs.begin(), skip_pairs.end());
+  return candidates;
+}
 
-  const double cos_limit = std::cos(settings.angle_tolerance_degrees * M_PI / 180.0);
-  std::vector<model::ContactInterface> found;
+/// False when every corner of `p` is further than `range` from the plane of `q` on one side: the
+/// overlap, inside p's outline, cannot come within range of q's plane either.
+bool may_reach(const model::Block& block, const FacePatch& p, const FacePatch& q, double range) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const int v : p.outline) {
+    const double d = q.normal.dot(block.vertices[v] - q.point);
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  const double margin = range + p.max_plane_deviation + q.max_plane_deviation;
+  return lo <= margin && hi >= -margin;
+}
+
+/// One patch pair after its planes and projections have been compared.
+struct PairGeometry {
+  Vec3 normal, t1, t2;  // mid-plane frame, normal from a into b
+  double angle_degrees = 0.0;
+  double tolerance = 0.0;
+};
+
+/// Height along `n` of the plane (normal, point) above the 2-D point (x, y) of the frame.
+double plane_height(const FacePatch& patch, const PairGeometry& g, const Point2& p) {
+  return (patch.normal.dot(patch.point) - patch.normal.dot(p.x() * g.t1 + p.y() * g.t2)) / patch.normal.dot(g.normal);
+}
+
+Polygon2 project(const model::Block& block, const FacePatch& patch, const PairGeometry& g) {
+  Polygon2 polygon;
+  polygon.reserve(patch.outline.size());
+  for (const int i : patch.outline) polygon.emplace_back(block.vertices[i].dot(g.t1), block.vertices[i].dot(g.t2));
+  return polygon;
+}
+
+Point2 area_centroid(const Polygon2& piece, double& area) {
+  Point2 weighted = Point2::Zero();
+  area = 0.0;
+  for (std::size_t k = 1; k + 1 < piece.size(); ++k) {
+    const Point2 e1 = piece[k] - piece[0], e2 = piece[k + 1] - piece[0];
+    const double tri = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+    weighted += tri * (piece[0] + piece[k] + piece[k + 1]) / 3.0;
+    area += tri;
+  }
+  return area != 0.0 ? Point2(weighted / area) : piece[0];
+}
+
+model::ContactInterface make_interface(int a, int b, const FacePatch& pa, const FacePatch& pb, const PairGeometry& g,
+                                       const Polygon2& piece, double friction) {
+  model::ContactInterface contact;
+  contact.block_a = a;
+  contact.block_b = b;
+  contact.normal = g.normal;
+  contact.tangent1 = g.t1;
+  contact.tangent2 = g.t2;
+  contact.detected = true;
+  contact.friction = friction;
+  double area = 0.0;
+  const Point2 c = area_centroid(piece, area);
+  // One plane for the whole polygon (normal n), halfway between the fitted planes at its centroid.
+  const double h = 0.5 * (plane_height(pa, g, c) + plane_height(pb, g, c));
+  contact.polygon.reserve(piece.size());
+  for (const Point2& p : piece) contact.polygon.push_back(h * g.normal + p.x() * g.t1 + p.y() * g.t2);
+  contact.area = std::abs(area);
+  contact.centroid = h * g.normal + c.x() * g.t1 + c.y() * g.t2;
+  return contact;
+}
+
+/// Everything detection collects while it runs.
+struct Collector {
+  std::vector<model::ContactInterface> interfaces;
+  std::vector<model::NearMiss> near_misses;
+  std::vector<double> gaps, angles, tolerances;
+  double largest_gap_fraction = 0.0;
   std::size_t face_pairs_tested = 0;
-  for (const auto& [a, b] : candidates) {
-    if (skip.count({a, b})) continue;
-    for (const FaceRecord& fa : faces[a]) {
-      if (fa.geometry.area <= 0.0) continue;
-      for (const FaceRecord& fb : faces[b]) {
-        if (fb.geometry.area <= 0.0) continue;
-        if (fa.geometry.normal.dot(fb.geometry.normal) > -cos_limit) continue;
-        if (!overlaps(fa.box, fb.box, tolerance)) continue;
-        const Vec3 gap = fb.geometry.centroid - fa.geometry.centroid;
-        if (std::abs(fa.geometry.normal.dot(gap)) > tolerance ||
-            std::abs(fb.geometry.normal.dot(gap)) > tolerance) {
-          continue;
-        }
-        ++face_pairs_tested;
-        // Mid-plane of the two faces; the normal points out of block a into block b.
-        const Vec3 normal = (fa.geometry.normal - fb.geometry.normal).normalized();
-        Vec3 t1, t2;
-        local_frame(normal, t1, t2);
-        const double offset = normal.dot(0.5 * (fa.geometry.centroid + fb.geometry.centroid));
-        auto project = [&](const model::Block& block, const std::vector<int>& face_indices) {
-          Polygon2 polygon;
-          polygon.reserve(face_indices.size());
-          for (int i : face_indices) polygon.emplace_back(block.vertices[i].dot(t1), block.vertices[i].dot(t2));
-          return polygon;
-        };
-        const std::size_t ia = &fa - faces[a].data();
-        const std::size_t ib = &fb - faces[b].data();
-        const Polygon2 pa = project(model.blocks[a], model.blocks[a].faces[ia]);
-        const Polygon2 pb = project(model.blocks[b], model.blocks[b].faces[ib]);
-        const double min_area = settings.min_area_fraction * std::min(fa.geometry.area, fb.geometry.area);
-        for (const Polygon2& piece : intersect(pa, pb, tolerance, min_area)) {
-          model::ContactInterface contact;
-          contact.block_a = a;
-          contact.block_b = b;
-          contact.normal = normal;
-          contact.tangent1 = t1;
-          contact.tangent2 = t2;
-          contact.detected = true;
-          contact.friction = model.default_friction;
-          contact.polygon.reserve(piece.size());
-          for (const Point2& p : piece) contact.polygon.push_back(offset * normal + p.x() * t1 + p.y() * t2);
-          const double area = std::abs(signed_area(piece));
-          contact.area = area;
-          Vec3 weighted = Vec3::Zero();
-          double total = 0.0;
-          for (std::size_t k = 1; k + 1 < piece.size(); ++k) {
-            const double tri = 0.5 * ((piece[k] - piece[0]).x() * (piece[k + 1] - piece[0]).y() -
-                                      (piece[k] - piece[0]).y() * (piece[k + 1] - piece[0]).x());
-            weighted += tri * (contact.polygon[0] + contact.polygon[k] + contact.polygon[k + 1]) / 3.0;
-            total += tri;
-          }
-          contact.centroid = total != 0.0 ? Vec3(weighted / total) : contact.polygon[0];
-          found.push_back(std::move(contact));
+};
+
+/// What comparing two patches gave: accepted pieces go straight to the collector.
+struct PairOutcome {
+  bool overlapping = false;  // some overlap came within the near-miss range
+  bool accepted = false;
+  model::NearMiss closest;   // the rejected piece closest to the tolerances
+};
+
+/// Compares patch pa of block a with patch pb of block b.
+PairOutcome compare(const model::Model& m, int a, int b, const FacePatch& pa, const FacePatch& pb,
+                    const DetectionTolerances& tol, Collector& out) {
+  PairOutcome result;
+  result.closest.distance = std::numeric_limits<double>::infinity();
+  PairGeometry g;
+  g.angle_degrees = std::acos(std::clamp(-pa.normal.dot(pb.normal), -1.0, 1.0)) * 180.0 / M_PI;
+  if (g.angle_degrees > kNearMissFactor * tol.angle_degrees) return result;
+  g.tolerance = tol.distance(pa.size, pb.size);
+  const double range = kNearMissFactor * g.tolerance;
+  if (!boxes_overlap(pa.box_min, pa.box_max, pb.box_min, pb.box_max, range)) return result;
+  if (!may_reach(m.blocks[a], pa, pb, range) || !may_reach(m.blocks[b], pb, pa, range)) return result;
+  ++out.face_pairs_tested;
+  g.normal = (pa.normal - pb.normal).normalized();
+  local_frame(g.normal, g.t1, g.t2);
+  const double min_area = m.detection.min_area_fraction * std::min(pa.area, pb.area);
+  // Vertices within a quarter of the joint tolerance snap together, so a sliver left where two
+  // noisy edges nearly coincide vanishes rather than becoming a contact.
+  const std::vector<Polygon2> pieces =
+      intersect(project(m.blocks[a], pa, g), project(m.blocks[b], pb, g), 0.25 * g.tolerance, min_area);
+  for (const Polygon2& piece : pieces) {
+    double distance = 0.0;
+    for (const Point2& p : piece) distance = std::max(distance, std::abs(plane_height(pb, g, p) - plane_height(pa, g, p)));
+    if (distance > range) continue;
+    result.overlapping = true;
+    if (g.angle_degrees <= tol.angle_degrees && distance <= g.tolerance) {
+      out.interfaces.push_back(make_interface(a, b, pa, pb, g, piece, m.default_friction));
+      out.gaps.push_back(distance);
+      out.angles.push_back(g.angle_degrees);
+      out.tolerances.push_back(g.tolerance);
+      if (g.tolerance > 0.0) out.largest_gap_fraction = std::max(out.largest_gap_fraction, distance / g.tolerance);
+      result.accepted = true;
+    } else if (distance < result.closest.distance) {
+      model::NearMiss& miss = result.closest;
+      miss.block_a = a;
+      miss.block_b = b;
+      miss.face_a = pa.faces.front();
+      miss.face_b = pb.faces.front();
+      miss.distance = distance;
+      miss.angle_degrees = g.angle_degrees;
+      miss.overlap_area = std::abs(signed_area(piece));
+      miss.distance_tolerance = g.tolerance;
+    }
+  }
+  return result;
+}
+
+/// How far outside its tolerances a near miss is (1 = at the tolerance).
+double excess(const model::NearMiss& miss, double angle_tolerance) {
+  const double d = miss.distance_tolerance > 0.0 ? miss.distance / miss.distance_tolerance : 0.0;
+  return std::max(d, angle_tolerance > 0.0 ? miss.angle_degrees / angle_tolerance : 0.0);
+}
+
+/// Compares two patches; when a merged patch does not fit, compares its faces one by one (a
+/// face of a finely faceted curve merged with its neighbours may fit where the merged plane
+/// does not). Records the closest rejected pair as a near miss when nothing was accepted.
+void match_patches(const model::Model& m, int a, int b, const FacePatch& pa, const FacePatch& pb,
+                   const DetectionTolerances& tol, Collector& out) {
+  PairOutcome best = compare(m, a, b, pa, pb, tol, out);
+  if (best.accepted) return;
+  if (!pa.parts.empty() || !pb.parts.empty()) {
+    const std::vector<FacePatch> only_a{pa}, only_b{pb};
+    for (const FacePatch& qa : pa.parts.empty() ? only_a : pa.parts) {
+      for (const FacePatch& qb : pb.parts.empty() ? only_b : pb.parts) {
+        const PairOutcome part = compare(m, a, b, qa, qb, tol, out);
+        best.accepted = best.accepted || part.accepted;
+        if (part.overlapping && (!best.overlapping || excess(part.closest, tol.angle_degrees) <
+                                                          excess(best.closest, tol.angle_degrees))) {
+          best.closest = part.closest;
+          best.overlapping = true;
         }
       }
     }
   }
-  if (stats) {
-    stats->candidate_block_pairs = candidates.size();
-    stats->face_pairs_tested = face_pairs_tested;
-    stats->interfaces_found = found.size();
+  if (!best.accepted && best.overlapping && std::isfinite(best.closest.distance)) out.near_misses.push_back(best.closest);
+}
+
+model::DetectionSummary summarise(Collector& c, const DetectionTolerances& tol, std::size_t candidates,
+                                  std::size_t merged) {
+  model::DetectionSummary s;
+  s.ran = true;
+  s.per_joint = tol.per_joint;
+  s.joint_tolerance = tol.joint_fraction;
+  s.fixed_distance = tol.fixed_distance;
+  s.angle_tolerance_degrees = tol.angle_degrees;
+  s.distance_tolerances = spread_of(c.tolerances);
+  s.gaps = spread_of(c.gaps);
+  s.angles = spread_of(c.angles);
+  s.largest_gap_fraction = c.largest_gap_fraction;
+  s.candidate_block_pairs = candidates;
+  s.face_pairs_tested = c.face_pairs_tested;
+  s.merged_faces = merged;
+  s.interfaces_found = c.interfaces.size();
+  s.near_misses_total = c.near_misses.size();
+  return s;
+}
+
+}  // namespace
+
+DetectionOutcome detect_interfaces(const model::Model& m, const std::vector<std::pair<int, int>>& skip_pairs) {
+  const DetectionTolerances tol = DetectionTolerances::of(m);
+  std::size_t merged = 0;
+  const std::vector<BlockPatches> bp = all_patches(m, tol, merged);
+  const std::vector<std::pair<int, int>> candidates = candidate_pairs(m, bp);
+  const std::set<std::pair<int, int>> skip(skip_pairs.begin(), skip_pairs.end());
+  // Merged patches' parts may be nearer opposite than the merged normal: keep the pre-test loose.
+  const double cos_near = std::cos(std::min(2.0 * kNearMissFactor * tol.angle_degrees, 90.0) * M_PI / 180.0);
+  Collector collected;
+  for (const auto& [a, b] : candidates) {
+    if (skip.count({a, b})) continue;
+    for (const FacePatch& pa : bp[a].patches) {
+      for (const FacePatch& pb : bp[b].patches) {
+        if (-pa.normal.dot(pb.normal) < cos_near) continue;
+        match_patches(m, a, b, pa, pb, tol, collected);
+      }
+    }
   }
-  return found;
+  DetectionOutcome outcome;
+  outcome.summary = summarise(collected, tol, candidates.size(), merged);
+  auto& misses = collected.near_misses;
+  const std::size_t keep = std::min(misses.size(), static_cast<std::size_t>(std::max(m.detection.max_near_misses, 0)));
+  auto closer = [&](const model::NearMiss& x, const model::NearMiss& y) {
+    return std::make_tuple(excess(x, tol.angle_degrees), x.block_a, x.block_b, x.face_a, x.face_b) <
+           std::make_tuple(excess(y, tol.angle_degrees), y.block_a, y.block_b, y.face_a, y.face_b);
+  };
+  std::partial_sort(misses.begin(), misses.begin() + static_cast<std::ptrdiff_t>(keep), misses.end(), closer);
+  misses.resize(keep);
+  outcome.near_misses = std::move(misses);
+  outcome.interfaces = std::move(collected.interfaces);
+  return outcome;
 }
 
 }  // namespace rbla::geometry

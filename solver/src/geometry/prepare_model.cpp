@@ -1,8 +1,10 @@
 #include "geometry/prepare_model.hpp"
 
+#include "geometry/face_patches.hpp"
 #include "geometry/overlap.hpp"
 #include "geometry/polyhedron.hpp"
 #include "geometry/surface_distance.hpp"
+#include "geometry/warped_faces.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -27,10 +29,8 @@ std::string format(double value) {
   return out.str();
 }
 
-/// Lengths in messages are given back in the user's unit.
-std::string length_text(double metres, const model::Units& units) {
-  return format(metres / units.length_to_m) + " " + units.length_name;
-}
+/// Lengths in messages are given back in the user's unit, to 6 digits.
+std::string length6(double metres, const model::Units& units) { return model::length_text(metres, units, 6); }
 
 /// First pair of non-adjacent edges of the polygon `corners` (in order) that cross each other
 /// properly, seen along `normal`: -1 in `first` when none. A pentagram or a bow tie crosses; edges
@@ -67,7 +67,8 @@ void first_crossing(const std::vector<Vec3>& corners, const Vec3& normal, int& f
 }
 
 void prepare_block(model::Block& block, std::size_t index, double model_tolerance, const model::Units& units,
-                   std::vector<InputIssue>& errors, std::vector<model::Warning>& warnings) {
+                   std::vector<InputIssue>& errors, std::vector<model::Warning>& warnings,
+                   std::vector<WarpedFace>& warped) {
   const std::string pointer = "/blocks/" + std::to_string(index);
   const std::string name = "block '" + block.id + "'";
   Vec3 lo = block.vertices[0], hi = block.vertices[0];
@@ -112,11 +113,8 @@ void prepare_block(model::Block& block, std::size_t index, double model_toleranc
       }
     }
     if (face.max_plane_deviation > std::max(model_tolerance, 1e-6 * diagonal)) {
-      warnings.push_back({"non_planar_face",
-                          name + ": face " + std::to_string(f) + " deviates from its plane by " +
-                              length_text(face.max_plane_deviation, units) +
-                              " (more than the distance tolerance); contacts on it are approximate",
-                          face_pointer, face.max_plane_deviation});
+      warped.push_back({static_cast<int>(index), static_cast<int>(f), face.max_plane_deviation,
+                        polygon_diameter(block.vertices, block.faces[f])});
     }
   }
   if (!faces_ok) return;
@@ -159,7 +157,7 @@ void prepare_block(model::Block& block, std::size_t index, double model_toleranc
   if (block.cad_centroid &&
       (*block.cad_centroid - block.centroid).norm() > std::max(kCadCentroidTolerance * diagonal, model_tolerance)) {
     warnings.push_back({"cad_centroid_mismatch",
-                        name + ": the CAD centroid is " + length_text((*block.cad_centroid - block.centroid).norm(), units) +
+                        name + ": the CAD centroid is " + length6((*block.cad_centroid - block.centroid).norm(), units) +
                             " from the centroid computed from its faces; the computed one is used",
                         pointer + "/centroid", (*block.cad_centroid - block.centroid).norm()});
   }
@@ -192,14 +190,12 @@ void prepare_given_interface(model::ContactInterface& contact, std::size_t index
   }
   if (face.max_plane_deviation > tolerance) {
     errors.push_back({pointer + "/polygon", "interface '" + contact.id + "' is not planar: a corner is " +
-                                                length_text(face.max_plane_deviation, m.units) +
+                                                length6(face.max_plane_deviation, m.units) +
                                                 " from the polygon's plane"});
     return;
   }
-  contact.normal = face.normal;
   // The schema says the normal points from blocks[0] into blocks[1].
-  const Vec3 a_to_b = m.blocks[contact.block_b].centroid - m.blocks[contact.block_a].centroid;
-  if (contact.normal.dot(a_to_b) < 0.0) contact.normal = -contact.normal;
+  contact.normal = given_interface_normal(m, contact.block_a, contact.block_b, face.normal, face.centroid, tolerance);
   local_frame(contact.normal, contact.tangent1, contact.tangent2);
   contact.area = face.area;
   contact.centroid = face.centroid;
@@ -226,8 +222,8 @@ void check_given_interface_on_blocks(const model::ContactInterface& contact, std
     const std::string where = worst_point + 1 == points.size() ? "its centroid" : "its corner " + std::to_string(worst_point);
     errors.push_back({"/interfaces/" + std::to_string(index) + "/polygon",
                       "interface '" + contact.id + "' does not lie on block '" + m.blocks[b].id + "': " + where + " is " +
-                          length_text(worst, m.units) + " from the block's nearest face (the distance tolerance is " +
-                          length_text(tolerance, m.units) + ")"});
+                          length6(worst, m.units) + " from the block's nearest face (the distance tolerance is " +
+                          length6(tolerance, m.units) + ")"});
   }
 }
 
@@ -263,7 +259,7 @@ void check_overlaps(const model::Model& m, double tolerance, std::vector<InputIs
     const double fraction = o.volume / std::min(a.volume, b.volume);
     const std::string what = "blocks '" + a.id + "' and '" + b.id + "' overlap: " + volume_text(o.volume, m.units) +
                              " in common (" + format(100.0 * fraction) + " % of the smaller" +
-                             (o.convex ? ", up to " + length_text(o.depth, m.units) + " deep)" : ")");
+                             (o.convex ? ", up to " + length6(o.depth, m.units) + " deep)" : ")");
     if (fraction > kOverlapVolumeFraction) {
       errors.push_back({"/blocks/" + std::to_string(o.block_b),
                         what + "; blocks may touch but not share volume (check for duplicated or misplaced blocks)"});
@@ -274,7 +270,7 @@ void check_overlaps(const model::Model& m, double tolerance, std::vector<InputIs
   if (small > 0) {
     warnings.push_back({"blocks_overlap",
                         first_small + (small > 1 ? " (and " + std::to_string(small - 1) + " more pairs)" : "") +
-                            ": more than the distance tolerance (" + length_text(tolerance, m.units) +
+                            ": more than the distance tolerance (" + length6(tolerance, m.units) +
                             ") accepts at a joint but under " + format(100.0 * kOverlapVolumeFraction) +
                             " % of a block, accepted as a CAD imperfection; a contact across it may be missed",
                         ""});
@@ -293,16 +289,18 @@ PrepareReport prepare_model(model::Model& m) {
   // one at 0.1 of the diagonal; the absolute one has no cap there): refuse it rather than answer.
   if (m.detection.distance_tolerance && *m.detection.distance_tolerance > 0.1 * m.bounding_box().diagonal()) {
     throw model::ModelError("/detection/distance_tolerance",
-                            "is " + length_text(*m.detection.distance_tolerance, m.units) +
+                            "is " + length6(*m.detection.distance_tolerance, m.units) +
                                 ", more than a tenth of the model's size (" +
-                                length_text(m.bounding_box().diagonal(), m.units) + " across)");
+                                length6(m.bounding_box().diagonal(), m.units) + " across)");
   }
+  std::vector<WarpedFace> warped;
   for (std::size_t i = 0; i < m.blocks.size(); ++i) {
-    prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings);
+    prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings, warped);
   }
   if (!errors.empty()) throw model::ModelError(errors);
   check_overlaps(m, tolerance, errors, m.warnings);
   if (!errors.empty()) throw model::ModelError(errors);
+  warn_warped_faces(warped, m);
 
   // Loads given without a point act at the centroid, known only now.
   for (auto* loads : {&m.dead_loads, &m.live_loads}) {
@@ -337,7 +335,11 @@ PrepareReport prepare_model(model::Model& m) {
     for (const auto& contact : m.interfaces) {
       covered.emplace_back(std::min(contact.block_a, contact.block_b), std::max(contact.block_a, contact.block_b));
     }
-    std::vector<model::ContactInterface> found = detect_interfaces(m, tolerance, m.detection, covered, &report.detection);
+    DetectionOutcome outcome = detect_interfaces(m, covered);
+    std::vector<model::ContactInterface>& found = outcome.interfaces;
+    m.near_misses = std::move(outcome.near_misses);
+    m.detection_summary = outcome.summary;
+    report.detection = outcome.summary;
     std::set<std::string> used_ids;
     for (const auto& contact : m.interfaces) used_ids.insert(contact.id);
     std::size_t next = 0;

@@ -431,12 +431,14 @@ void read_detection(const json& d, model::Model& m) {
   m.detection.mode = mode == "off"     ? model::DetectionMode::Off
                      : mode == "merge" ? model::DetectionMode::Merge
                                        : model::DetectionMode::Auto;
-  m.detection.relative_tolerance = d.value("relative_tolerance", m.detection.relative_tolerance);
+  m.detection.joint_tolerance = d.value("joint_tolerance", m.detection.joint_tolerance);
+  if (d.contains("relative_tolerance")) m.detection.relative_tolerance = d["relative_tolerance"].get<double>();
   if (d.contains("distance_tolerance")) {
     m.detection.distance_tolerance = d["distance_tolerance"].get<double>() * m.units.length_to_m;
   }
   m.detection.angle_tolerance_degrees = d.value("angle_tolerance", m.detection.angle_tolerance_degrees);
   m.detection.min_area_fraction = d.value("min_area_fraction", m.detection.min_area_fraction);
+  m.detection.max_near_misses = d.value("max_near_misses", m.detection.max_near_misses);
 }
 
 void read_loads(const json& loads, model::Model& m, IssueList& issues) {

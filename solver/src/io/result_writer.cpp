@@ -1,5 +1,6 @@
 #include "io/result_writer.hpp"
 
+#include "io/detection_json.hpp"
 #include "io/warning_summary.hpp"
 
 #include <algorithm>
@@ -102,6 +103,7 @@ json model_only_result(const model::Model& model, const StageTimings& timings, c
   if (!source.empty() && source != "-") source_info["source"] = source;
   if (!model.title.empty()) source_info["title"] = model.title;
   if (!source_info.empty()) result["model"] = source_info;
+  if (model.detection_summary.ran) result["detection"] = detection_json(model);
   return result;
 }
 

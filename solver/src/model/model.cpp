@@ -2,8 +2,16 @@
 
 #include <algorithm>
 #include <limits>
+#include <sstream>
 
 namespace rbla::model {
+
+std::string length_text(double metres, const Units& units, int digits) {
+  std::ostringstream out;
+  out.precision(digits);
+  out << metres / units.length_to_m << " " << units.length_name;
+  return out.str();
+}
 
 const char* to_string(BlockRole role) {
   switch (role) {
@@ -71,7 +79,7 @@ std::size_t Model::num_contact_points() const {
 
 double Model::distance_tolerance() const {
   if (detection.distance_tolerance) return *detection.distance_tolerance;
-  return detection.relative_tolerance * std::max(bounding_box().diagonal(), 1e-300);
+  return detection.relative_tolerance.value_or(kModelRelativeTolerance) * std::max(bounding_box().diagonal(), 1e-300);
 }
 
 }  // namespace rbla::model

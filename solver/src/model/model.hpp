@@ -28,6 +28,9 @@ struct Units {
   double unit_weight_to_kN_m3 = 1.0;   // (kN/m^3) per file unit-weight unit
 };
 
+/// A length for messages, given back in the user's unit ("12.5 mm"), to `digits` significant digits.
+std::string length_text(double metres, const Units& units, int digits = 3);
+
 enum class BlockRole { Free, Fixed, MovingSupport };
 const char* to_string(BlockRole role);
 
@@ -113,13 +116,32 @@ struct AnalysisRequest {
 
 enum class DetectionMode { Auto, Off, Merge };
 
+/// Interface detection settings (schema: `detection`; the schema's defaults are these, a test
+/// keeps the two equal). By default every joint gets its own distance tolerance,
+/// `joint_tolerance` times the size of its smaller face, so that what counts as touching follows
+/// the blocks, not the size of the model; `distance_tolerance` or `relative_tolerance` replace
+/// that by one tolerance for every joint.
 struct DetectionSettings {
   DetectionMode mode = DetectionMode::Auto;
-  double relative_tolerance = 1e-4;            // of the bounding-box diagonal
-  std::optional<double> distance_tolerance;    // m, overrides relative_tolerance
-  double angle_tolerance_degrees = 1.0;
+  /// Fraction of a joint's size (the diameter of the smaller of its two faces): the largest
+  /// distance between the two faces' fitted planes over their overlap that still counts as
+  /// touching, and how far a face may depart from its plane when split faces are merged.
+  double joint_tolerance = 0.03;
+  /// Of the bounding-box diagonal: one distance tolerance for every joint, when given.
+  std::optional<double> relative_tolerance;
+  std::optional<double> distance_tolerance;    // m, one tolerance for every joint; overrides the others
+  /// Largest angle between one face's outward normal and the other's reversed normal (degrees);
+  /// also the largest angle between neighbouring faces of a block merged into one face.
+  double angle_tolerance_degrees = 10.0;
   double min_area_fraction = 1e-6;             // of the smaller face
+  /// How many of the closest rejected face pairs are kept in `Model::near_misses`.
+  int max_near_misses = 50;
 };
+
+/// The geometric tolerance of the model (m) where no joint is involved (vertex merging, planarity
+/// of given interfaces, extrusion checks): this fraction of the bounding-box diagonal unless the
+/// model gives `detection.distance_tolerance` or `detection.relative_tolerance`.
+inline constexpr double kModelRelativeTolerance = 1e-4;
 
 /// A pair of faces of different blocks that interface detection looked at and rejected: close and
 /// nearly opposite, but outside its tolerances. Kept so that a verdict can say which joints were
@@ -132,6 +154,33 @@ struct NearMiss {
   double distance = 0.0;        ///< m, largest distance between the two face planes over the overlap
   double angle_degrees = 0.0;   ///< deviation of the outward normals from exactly opposite
   double overlap_area = 0.0;    ///< m^2, overlap of the two faces projected on their mid-plane
+  double distance_tolerance = 0.0;  ///< m, the distance this pair had to be within
+};
+
+/// Min, median and max of a set of values (all 0 when the set is empty).
+struct Spread {
+  std::size_t count = 0;
+  double min = 0.0;
+  double median = 0.0;
+  double max = 0.0;
+};
+
+/// What interface detection did, for `rbla info` and the result JSON.
+struct DetectionSummary {
+  bool ran = false;
+  bool per_joint = true;             ///< tolerances from each joint's size (else one fixed tolerance)
+  double joint_tolerance = 0.0;      ///< fraction of the joint size (per_joint)
+  double fixed_distance = 0.0;       ///< m (when !per_joint)
+  double angle_tolerance_degrees = 0.0;
+  Spread distance_tolerances;        ///< m, the distance tolerances the accepted joints were given
+  Spread gaps;                       ///< m, largest plane-to-plane distance over each accepted joint
+  Spread angles;                     ///< degrees, deviation from opposite of each accepted joint
+  double largest_gap_fraction = 0.0; ///< the largest gap of an accepted joint over its tolerance
+  std::size_t candidate_block_pairs = 0;
+  std::size_t face_pairs_tested = 0;
+  std::size_t merged_faces = 0;      ///< faces merged into a neighbouring coplanar face of their block
+  std::size_t interfaces_found = 0;
+  std::size_t near_misses_total = 0; ///< all near misses; `Model::near_misses` keeps the closest
 };
 
 struct BoundingBox {
@@ -166,8 +215,10 @@ struct Model {
   DetectionSettings detection;
   std::unordered_map<std::string, int> block_index;  // id -> position in `blocks`
   std::vector<Warning> warnings;
-  /// Face pairs interface detection rejected but that came close (filled by geometry::prepare_model).
+  /// Face pairs interface detection rejected but that came close (filled by geometry::prepare_model),
+  /// the closest first, at most detection.max_near_misses of them.
   std::vector<NearMiss> near_misses;
+  DetectionSummary detection_summary;
 
   BoundingBox bounding_box() const;
   std::size_t num_contact_points() const;
