@@ -101,7 +101,7 @@ struct AnalysisRequest {
   double tol_feasibility = 1e-8;
   // Non-associative scheme (analysis/non_associative.hpp): steps, the fixed-point test's relative
   // tolerance, the damping of the shifts, and warm starts from the previous step's iterate.
-  int non_associative_max_iterations = 30;
+  int non_associative_max_iterations = 50;
   double non_associative_tolerance = 1e-3;
   double non_associative_damping = 0.5;
   bool non_associative_warm_start = true;
