@@ -36,7 +36,7 @@ constexpr double kWarmStartWeight = 0.99;
 /// squat wall sliding at mu on any of its bed joints) can keep dilating while the value settles.
 constexpr double kCheckDilatancy = 1e-2;
 constexpr int kCheckEvery = 3;
-constexpr int kCheckAlways = 5;
+constexpr int kCheckAlways = 10;
 
 /// s_k = mu_k |d_t,k|: the friction work rate a sliding point would need to dissipate without
 /// dilatancy, in the dual's own velocity units (formulation units, unnormalised).
