@@ -16,6 +16,7 @@
 #include "io/problem_file.hpp"
 #include "io/result_writer.hpp"
 #include "io/svg_writer.hpp"
+#include "io/worst_direction_json.hpp"
 #include "io/warning_summary.hpp"
 #include "model/errors.hpp"
 
@@ -176,12 +177,13 @@ void print_detection(const rbla::model::Model& m, std::ostream& out) {
 /// the model, and no two may be one file. Throws io::FileError. Returns true when an output goes to
 /// standard output: what would be printed there (the verdict) then goes to standard error, so
 /// that `-o -` gives a clean JSON stream.
-bool check_paths(const CommonOptions& options) {
+bool check_paths(const CommonOptions& options,
+                 const std::vector<std::string>& svg_names = {"mechanism.svg", "convergence.svg"}) {
   std::vector<rbla::io::OutputTarget> outputs;
   if (!options.output_path.empty()) outputs.push_back(rbla::io::resolve_output(options.output_path));
   if (!options.dump_problem_path.empty()) outputs.push_back(rbla::io::resolve_output(options.dump_problem_path));
   if (!options.svg_dir.empty()) {
-    for (auto& target : rbla::io::resolve_outputs_in_folder(options.svg_dir, {"mechanism.svg", "convergence.svg"})) {
+    for (auto& target : rbla::io::resolve_outputs_in_folder(options.svg_dir, svg_names)) {
       outputs.push_back(std::move(target));
     }
   }
@@ -226,6 +228,20 @@ int run_info(const CommonOptions& options) {
     return write_output(options.output_path, result.dump(1) + "\n");
   }
   return kSuccess;
+}
+
+/// Answers (collapse, no mechanism, cannot stand) succeed; a solve that gave no answer does not.
+int exit_code_of(rbla::analysis::Verdict verdict) {
+  switch (verdict) {
+    case rbla::analysis::Verdict::Collapse:
+    case rbla::analysis::Verdict::NoMechanism:
+    case rbla::analysis::Verdict::CannotStand: return kSuccess;
+    case rbla::analysis::Verdict::SolverFailure:
+    case rbla::analysis::Verdict::TimeLimit:
+    case rbla::analysis::Verdict::IterationLimit:
+    case rbla::analysis::Verdict::Cancelled: return kSolverFailure;
+  }
+  return kSolverFailure;
 }
 
 int run_solve(const CommonOptions& options) {
@@ -289,16 +305,51 @@ int run_solve(const CommonOptions& options) {
     if (code != kSuccess) return code;
     if (options.output_path != "-") progress(options, "wrote " + options.output_path);
   }
-  switch (result.verdict) {
-    case rbla::analysis::Verdict::Collapse:
-    case rbla::analysis::Verdict::NoMechanism:
-    case rbla::analysis::Verdict::CannotStand: return kSuccess;
-    case rbla::analysis::Verdict::SolverFailure:
-    case rbla::analysis::Verdict::TimeLimit:
-    case rbla::analysis::Verdict::IterationLimit:
-    case rbla::analysis::Verdict::Cancelled: return kSolverFailure;
+  return exit_code_of(result.verdict);
+}
+
+struct SearchOptions {
+  rbla::analysis::RadialSearchSettings settings;
+};
+
+int run_worst_direction(const CommonOptions& options, const SearchOptions& search) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool stdout_taken = check_paths(options, {"mechanism.svg", "worst_direction.svg"});
+  rbla::io::LoadedModel loaded;
+  int exit_code = kSuccess;
+  if (!load(options, loaded, exit_code)) return exit_code;
+  rbla::analysis::AnalysisOptions analysis_options;
+  analysis_options.log = options.verbose ? &std::cerr : nullptr;
+  analysis_options.threads = options.threads;
+  progress(options, "searching the weakest horizontal direction of the seismic load");
+  const rbla::analysis::WorstDirection w =
+      rbla::analysis::find_worst_direction(loaded.model, analysis_options, search.settings);
+  report_warnings(w.at_minimum.warnings, options);
+  progress(options, std::to_string(w.evaluations.size()) + " directions in " + seconds_text(w.seconds) + "; " + w.stop);
+  (stdout_taken ? std::cerr : std::cout) << shown(w.verdict_text) << "\n";
+
+  rbla::io::StageTimings timings = loaded.timings;
+  const auto write_start = std::chrono::steady_clock::now();
+  if (!options.svg_dir.empty()) {
+    rbla::io::make_folder(options.svg_dir);
+    const std::string mechanism = svg_file(options, "mechanism.svg").string();
+    const std::string polar = svg_file(options, "worst_direction.svg").string();
+    const int svg_code = write_output(mechanism, rbla::io::mechanism_svg(w.model_at_minimum, w.at_minimum));
+    if (svg_code != kSuccess) return svg_code;
+    const int plot_code = write_output(polar, rbla::io::worst_direction_svg(w));
+    if (plot_code != kSuccess) return plot_code;
+    progress(options, "wrote " + mechanism + " and " + polar);
   }
-  return kSolverFailure;
+  if (!options.output_path.empty()) {
+    timings.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
+    timings.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    nlohmann::json json = rbla::io::analysis_result_json(w.model_at_minimum, w.at_minimum, timings, options.model_path);
+    json["worst_direction"] = rbla::io::worst_direction_json(w, search.settings.tolerance);
+    const int code = write_output(options.output_path, json.dump(1) + "\n");
+    if (code != kSuccess) return code;
+    if (options.output_path != "-") progress(options, "wrote " + options.output_path);
+  }
+  return exit_code_of(w.verdict);
 }
 
 /// --max-input-bytes, --max-depth, ... (io/input_limits.hpp): how much input a command accepts.
@@ -354,6 +405,28 @@ int main(int argc, char** argv) {
   info->add_flag("-v,--verbose", options.verbose, "Every warning on its own line (default: one line per kind)");
   add_input_limits(info, options.limits);
 
+  SearchOptions search;
+  CLI::App* worst = app.add_subcommand(
+      "worst-direction", "Find the horizontal direction of the seismic load the structure carries least");
+  worst->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
+  worst->add_option("-o,--output", options.output_path,
+                    "Result JSON at the weakest direction, with a worst_direction section ('-' for standard output)");
+  worst->add_option("--svg", options.svg_dir, "Folder for the mechanism and the alpha(theta) polar SVG pictures");
+  worst->add_option("--tolerance", search.settings.tolerance,
+                    "Stop when the certified bracket of the minimum is this narrow, relative")
+      ->default_val(search.settings.tolerance)
+      ->check(CLI::Range(1e-9, 0.5));
+  worst->add_option("--initial-directions", search.settings.initial_samples, "Evenly spaced first directions")
+      ->default_val(search.settings.initial_samples)
+      ->check(CLI::Range(3, 360));
+  worst->add_option("--max-directions", search.settings.max_samples, "Directions evaluated in all, at most")
+      ->default_val(search.settings.max_samples)
+      ->check(CLI::Range(3, 10000));
+  worst->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+  worst->add_flag("-v,--verbose", options.verbose, "Interior-point iteration logs and every warning");
+  worst->add_option("--threads", options.threads, "Threads per conic solve, 1 or 2")->check(CLI::Range(1, 2));
+  add_input_limits(worst, options.limits);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -369,6 +442,7 @@ int main(int argc, char** argv) {
     if (*solve) return run_solve(options);
     if (*validate) return run_validate(options);
     if (*info) return run_info(options);
+    if (*worst) return run_worst_direction(options, search);
   } catch (const rbla::model::ModelError& error) {
     return report_invalid(error);
   } catch (const rbla::io::FileError& error) {
