@@ -16,6 +16,7 @@
 #include "io/problem_file.hpp"
 #include "io/result_writer.hpp"
 #include "io/svg_writer.hpp"
+#include "io/critical_friction_json.hpp"
 #include "io/worst_direction_json.hpp"
 #include "io/warning_summary.hpp"
 #include "model/errors.hpp"
@@ -29,6 +30,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 namespace {
 
@@ -310,6 +312,8 @@ int run_solve(const CommonOptions& options) {
 
 struct SearchOptions {
   rbla::analysis::RadialSearchSettings settings;
+  rbla::analysis::ThresholdSettings threshold;
+  std::optional<double> target_alpha;
 };
 
 int run_worst_direction(const CommonOptions& options, const SearchOptions& search) {
@@ -350,6 +354,46 @@ int run_worst_direction(const CommonOptions& options, const SearchOptions& searc
     if (options.output_path != "-") progress(options, "wrote " + options.output_path);
   }
   return exit_code_of(w.verdict);
+}
+
+int run_critical_friction(const CommonOptions& options, const SearchOptions& search) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool stdout_taken = check_paths(options, {"mechanism.svg", "critical_friction.svg"});
+  rbla::io::LoadedModel loaded;
+  int exit_code = kSuccess;
+  if (!load(options, loaded, exit_code)) return exit_code;
+  rbla::analysis::AnalysisOptions analysis_options;
+  analysis_options.log = options.verbose ? &std::cerr : nullptr;
+  analysis_options.threads = options.threads;
+  progress(options, "searching the smallest friction factor");
+  const rbla::analysis::CriticalFriction c =
+      rbla::analysis::find_critical_friction(loaded.model, search.target_alpha, analysis_options, search.threshold);
+  report_warnings(c.at_critical.warnings, options);
+  progress(options, std::to_string(c.evaluations.size()) + " factors in " + seconds_text(c.seconds));
+  (stdout_taken ? std::cerr : std::cout) << shown(c.verdict_text) << "\n";
+
+  rbla::io::StageTimings timings = loaded.timings;
+  const auto write_start = std::chrono::steady_clock::now();
+  if (!options.svg_dir.empty()) {
+    rbla::io::make_folder(options.svg_dir);
+    const std::string mechanism = svg_file(options, "mechanism.svg").string();
+    const std::string curve = svg_file(options, "critical_friction.svg").string();
+    const int svg_code = write_output(mechanism, rbla::io::mechanism_svg(c.model_at_critical, c.at_critical));
+    if (svg_code != kSuccess) return svg_code;
+    const int plot_code = write_output(curve, rbla::io::critical_friction_svg(c));
+    if (plot_code != kSuccess) return plot_code;
+    progress(options, "wrote " + mechanism + " and " + curve);
+  }
+  if (!options.output_path.empty()) {
+    timings.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
+    timings.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    nlohmann::json json = rbla::io::analysis_result_json(c.model_at_critical, c.at_critical, timings, options.model_path);
+    json["critical_friction"] = rbla::io::critical_friction_json(c, search.threshold.tolerance);
+    const int code = write_output(options.output_path, json.dump(1) + "\n");
+    if (code != kSuccess) return code;
+    if (options.output_path != "-") progress(options, "wrote " + options.output_path);
+  }
+  return c.outcome == rbla::analysis::ThresholdOutcome::Failed ? kSolverFailure : kSuccess;
 }
 
 /// --max-input-bytes, --max-depth, ... (io/input_limits.hpp): how much input a command accepts.
@@ -427,6 +471,24 @@ int main(int argc, char** argv) {
   worst->add_option("--threads", options.threads, "Threads per conic solve, 1 or 2")->check(CLI::Range(1, 2));
   add_input_limits(worst, options.limits);
 
+  CLI::App* friction = app.add_subcommand(
+      "critical-friction", "Find the smallest friction (all coefficients scaled together) to stand or carry a load multiplier");
+  friction->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
+  friction->add_option("-o,--output", options.output_path,
+                       "Result JSON at the critical friction, with a critical_friction section ('-' for standard output)");
+  friction->add_option("--svg", options.svg_dir, "Folder for the mechanism and the alpha(mu) SVG pictures");
+  friction->add_option("--target-alpha", search.target_alpha,
+                       "Smallest friction that carries this load multiplier (default: that stands under its own weight)")
+      ->check(CLI::Range(0.0, 1e6));
+  friction->add_option("--tolerance", search.threshold.tolerance,
+                       "Stop when the certified bracket of the factor is this narrow, relative")
+      ->default_val(search.threshold.tolerance)
+      ->check(CLI::Range(1e-9, 0.5));
+  friction->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+  friction->add_flag("-v,--verbose", options.verbose, "Interior-point iteration logs and every warning");
+  friction->add_option("--threads", options.threads, "Threads per conic solve, 1 or 2")->check(CLI::Range(1, 2));
+  add_input_limits(friction, options.limits);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -443,6 +505,7 @@ int main(int argc, char** argv) {
     if (*validate) return run_validate(options);
     if (*info) return run_info(options);
     if (*worst) return run_worst_direction(options, search);
+    if (*friction) return run_critical_friction(options, search);
   } catch (const rbla::model::ModelError& error) {
     return report_invalid(error);
   } catch (const rbla::io::FileError& error) {

@@ -217,3 +217,19 @@ TEST_F(Cli, WorstDirectionRefusesASettlementModelNamingTheField) {
   EXPECT_NE(r.output.find("/analysis/type"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("w.json")));
 }
+
+TEST_F(Cli, CriticalFrictionWritesAValidResultWithTheBracket) {
+  // The same block carries alpha = min(mu, 0.5): alpha 0.3 needs mu = 0.3, the given 0.6 times 0.5.
+  const auto r = run("critical-friction -q " + write("m.json", box_model()) + " --target-alpha 0.3 --tolerance 1e-6 -o " +
+                     path("c.json") + " --svg " + path("pictures"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(path("c.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
+  const auto c = nlohmann::json::parse(text.str()).at("critical_friction");
+  EXPECT_EQ(c.at("outcome"), "bracketed");
+  EXPECT_NEAR(c.at("friction").get<double>(), 0.3, 1e-6);
+  EXPECT_LE(c.at("factor_lower").get<double>(), c.at("factor").get<double>());
+  EXPECT_TRUE(fs::exists(path("pictures/critical_friction.svg")));
+}
