@@ -1,6 +1,8 @@
 #include "io/result_writer.hpp"
 
+
 #include "io/detection_json.hpp"
+#include "io/sensitivities_json.hpp"
 #include "io/warning_summary.hpp"
 
 #include <algorithm>
@@ -328,6 +330,7 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
           {"inscribed", non_negative(result.accuracy.pyramid_bracket->first / unit)},
           {"circumscribed", non_negative(result.accuracy.pyramid_bracket->second / unit)}};
     }
+    if (result.sensitivities) out["sensitivities"] = sensitivities_json(model, *result.sensitivities);
   }
 
   std::vector<model::Warning> warnings = model.warnings;
