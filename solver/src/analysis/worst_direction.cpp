@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 namespace rbla::analysis {
 namespace {
@@ -25,15 +26,6 @@ void check_request(const model::Model& m) {
     throw model::ModelError("/live_loads", "the worst direction turns the seismic load only; live point loads "
                                            "would be scaled by alpha without turning: remove them for this search");
   }
-}
-
-/// Horizontal basis: x (or y when gravity is along x) projected on the plane normal to gravity,
-/// and gravity-up cross that, so that angles turn counter-clockwise seen from above.
-void horizontal_axes(const model::Model& m, Vec3& axis_x, Vec3& axis_y) {
-  const Vec3 up = -m.gravity.normalized();
-  const Vec3 seed = std::abs(up.x()) > 0.9 ? Vec3::UnitY() : Vec3::UnitX();
-  axis_x = (seed - seed.dot(up) * up).normalized();
-  axis_y = up.cross(axis_x);
 }
 
 /// The supporting line the mechanism gives (associative friction): alpha_u(t) = D / (F . d(t)).
@@ -114,7 +106,7 @@ WorstDirection find_worst_direction(const model::Model& model, const AnalysisOpt
   check_request(model);
   const auto start = Clock::now();
   WorstDirection w;
-  horizontal_axes(model, w.axis_x, w.axis_y);
+  std::tie(w.axis_x, w.axis_y) = model.horizontal_axes();
   RadialSearchSettings search_settings = settings;
   search_settings.convex = model.analysis.friction_model == model::FrictionModel::Associative;
 
