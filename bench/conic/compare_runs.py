@@ -7,7 +7,8 @@ the statuses agree, and exits with status 1 when a problem takes more iterations
 another status, or moves its objective by more than --tol (relative).
 
     # once: dump a set of real problems (samples, façade settlement and seismic, planar and 3-D)
-    python3 bench/conic/compare_runs.py --generate /tmp/conic-problems --rbla build/solver/app/rbla
+    python3 bench/conic/compare_runs.py --generate /tmp/conic-problems --rbla build/solver/rbla \
+        --wall-bench build-conic-bench/rbla_conic_wall_bench
     # then after each change:
     python3 bench/conic/compare_runs.py --base /tmp/conic-base/rbla_conic_cbf_solve \
         --new build-conic-bench/rbla_conic_cbf_solve /tmp/conic-problems
@@ -51,8 +52,14 @@ def make_model(recipe):
     return json.loads(out)
 
 
-def generate(directory, rbla):
+def generate(directory, rbla, wall_bench):
     directory.mkdir(parents=True, exist_ok=True)
+    if wall_bench:
+        # The synthetic wall with one dense column (alpha times the loads), 20 x 15 blocks: its
+        # bordered solve loses accuracy late and the dense column moves into the sparse factor.
+        problem = directory / "synthetic_wall_dense_column.cbf"
+        subprocess.run([wall_bench, "20", "15", "--dump", str(problem)], check=True, capture_output=True)
+        print(f"wrote {problem}")
     for name, (recipe, formulation) in MODELS.items():
         model = make_model(recipe)
         if formulation:
@@ -98,12 +105,15 @@ def main():
     parser.add_argument("--tol", type=float, default=1e-9, help="largest relative objective difference")
     parser.add_argument("--generate", type=pathlib.Path, help="write the problem set into this folder")
     parser.add_argument("--rbla", help="the rbla command-line program (with --generate)")
-    parser.add_argument("--solver-args", default="", help="extra arguments for both solvers, one string")
+    parser.add_argument("--wall-bench", help="rbla_conic_wall_bench, for the synthetic wall with a dense "
+                        "column (with --generate; optional)")
+    parser.add_argument("--solver-args", default="",
+                        help="extra arguments for both solvers, one string ("--solver-args=--threads 1")")
     args = parser.parse_args()
     if args.generate:
         if not args.rbla:
             parser.error("--generate needs --rbla")
-        generate(args.generate, args.rbla)
+        generate(args.generate, args.rbla, args.wall_bench)
         return 0
     if not (args.problems and args.base and args.new):
         parser.error("give the problem folder, --base and --new")

@@ -168,27 +168,7 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   FactorReport report;
   auto start = std::chrono::steady_clock::now();
   packed_W2_ = packed_W2;
-  std::fill(values_.begin(), values_.end(), 0.0);
-  if (split_) {
-    for (int d = 0; d < 2; ++d) std::fill(split_->share(d).begin(), split_->share(d).end(), 0.0);
-    // Each domain's blocks on their own thread: they write disjoint entries of M, except the
-    // separator–separator ones, which go to their domain's share only and are summed after.
-    const std::function<void()> domain0 = [this] {
-      for (int k : domain_blocks_[0]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[0]);
-    };
-    const std::function<void()> domain1 = [this] {
-      for (int k : domain_blocks_[1]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[1]);
-    };
-    fork_join_->run(domain0, domain1);
-    const std::vector<int>& positions = split_->split().separator_positions();
-    for (std::size_t slot = 0; slot < positions.size(); ++slot)
-      values_[static_cast<std::size_t>(positions[slot])] =
-          split_->share(0)[slot] + split_->share(1)[slot];
-  } else {
-    for (const BlockData& bd : blocks_) {
-      if (!bd.dense) add_block(bd, scratch_[0]);
-    }
-  }
+  assemble();
   double max_diag = 0;
   for (int p : diag_pos_) max_diag = std::max(max_diag, values_[static_cast<std::size_t>(p)]);
   report.assembly_seconds = seconds_since(start);
@@ -209,34 +189,61 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   }
   shift_ = shift;
   report.shift = shift;
-
-  if (report.ok && !dense_blocks_.empty()) {
-    const Eigen::Index k = static_cast<Eigen::Index>(dense_blocks_.size());
-    dense_Minv_D_.resize(m_, k);
-    Eigen::MatrixXd schur(k, k);
-    Eigen::VectorXd column, solved;
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const BlockData& bd =
-          blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
-      column.setZero(m_);
-      for (std::size_t a = 0; a < bd.rows.size(); ++a)
-        column[bd.rows[a]] = local_A_[bd.a_offset + a];
-      dense_D_.col(j) = column;
-      solved = column;
-      solve_factor(solved.data(), 1);
-      dense_Minv_D_.col(j) = solved;
-    }
-    schur.noalias() = dense_D_.transpose() * dense_Minv_D_;
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const BlockData& bd =
-          blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
-      const double d = std::max(packed_W2_[bd.w2_offset], 1e-300);
-      schur(j, j) += 1.0 / d;
-    }
-    dense_schur_.compute(schur);
-  }
+  if (report.ok && !dense_blocks_.empty()) factor_dense_schur();
   report.factor_seconds = seconds_since(start);
   return report;
+}
+
+// M_s's values from the blocks' terms A_k W²_k A_kᵀ (dense columns left out).
+void NormalEquations::assemble() {
+  std::fill(values_.begin(), values_.end(), 0.0);
+  if (!split_) {
+    for (const BlockData& bd : blocks_) {
+      if (!bd.dense) add_block(bd, scratch_[0]);
+    }
+    return;
+  }
+  for (int d = 0; d < 2; ++d) std::fill(split_->share(d).begin(), split_->share(d).end(), 0.0);
+  // Each domain's blocks on their own thread: they write disjoint entries of M, except the
+  // separator–separator ones, which go to their domain's share only and are summed after.
+  const std::function<void()> domain0 = [this] {
+    for (int k : domain_blocks_[0]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[0]);
+  };
+  const std::function<void()> domain1 = [this] {
+    for (int k : domain_blocks_[1]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[1]);
+  };
+  fork_join_->run(domain0, domain1);
+  const std::vector<int>& positions = split_->split().separator_positions();
+  for (std::size_t slot = 0; slot < positions.size(); ++slot)
+    values_[static_cast<std::size_t>(positions[slot])] =
+        split_->share(0)[slot] + split_->share(1)[slot];
+}
+
+// The bordered system's Schur complement Dᵀ M_s⁻¹ D + diag(1/d) (normal_equations.hpp), with
+// M_s⁻¹ D kept for the solves.
+void NormalEquations::factor_dense_schur() {
+  const Eigen::Index k = static_cast<Eigen::Index>(dense_blocks_.size());
+  dense_Minv_D_.resize(m_, k);
+  Eigen::MatrixXd schur(k, k);
+  Eigen::VectorXd column, solved;
+  for (Eigen::Index j = 0; j < k; ++j) {
+    const BlockData& bd =
+        blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
+    column.setZero(m_);
+    for (std::size_t a = 0; a < bd.rows.size(); ++a) column[bd.rows[a]] = local_A_[bd.a_offset + a];
+    dense_D_.col(j) = column;
+    solved = column;
+    solve_factor(solved.data(), 1);
+    dense_Minv_D_.col(j) = solved;
+  }
+  schur.noalias() = dense_D_.transpose() * dense_Minv_D_;
+  for (Eigen::Index j = 0; j < k; ++j) {
+    const BlockData& bd =
+        blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
+    const double d = std::max(packed_W2_[bd.w2_offset], 1e-300);
+    schur(j, j) += 1.0 / d;
+  }
+  dense_schur_.compute(schur);
 }
 
 void NormalEquations::add_block(const BlockData& bd, std::vector<double>& scratch) {
@@ -322,7 +329,7 @@ void NormalEquations::solve_pair(const Eigen::VectorXd& rhs_a, const Eigen::Vect
 void NormalEquations::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
   // M v from the lower triangle assembled for the last factorisation (exact M_s, the shift δ is
   // CHOLMOD's), plus A_k (W²_k (A_kᵀ v)) for the dense columns kept out of it. Called once per CG
-  // step. Per block through A_k instead, this was 10 % of an 8051-block 3-D solve: every block
+  // step. Per block through A_k instead, a large share of a 3-D solve went there: every block
   // re-gathers the rows it touches, M's lower triangle visits each entry once.
   ++num_multiplies_;
   const int* col_ptr = col_ptr_.data();

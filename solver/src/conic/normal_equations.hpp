@@ -104,6 +104,8 @@ class NormalEquations {
   void build_pattern(std::vector<std::vector<int>>& lower_rows_of_col);
   void build_value_map();
   void choose_backend(Ordering ordering);
+  void assemble();
+  void factor_dense_schur();
   /// Adds block bd's terms A_k W²_k A_kᵀ to M (or to its domain's separator share).
   void add_block(const BlockData& bd, std::vector<double>& scratch);
   template <class Add>
