@@ -108,7 +108,7 @@ def main():
     parser.add_argument("--wall-bench", help="rbla_conic_wall_bench, for the synthetic wall with a dense "
                         "column (with --generate; optional)")
     parser.add_argument("--solver-args", default="",
-                        help="extra arguments for both solvers, one string ("--solver-args=--threads 1")")
+                        help="extra arguments for both solvers, one string ('--solver-args=--threads 1')")
     args = parser.parse_args()
     if args.generate:
         if not args.rbla:
