@@ -47,11 +47,10 @@ void StepStrategy::compute(KktSystem& kkt, Step& step, Info& info) {
     step.alpha = settings_.step_fraction * std::min(1.0, max_step(step.direction));
 }
 
-// Mehrotra's second-order term (W⁻¹dx_a)∘(W dz_a) and the centring σμe.
+// Mehrotra's second-order term (W⁻¹dx_a)∘(W dz_a) and the centring σμe. W⁻¹dx_a and W dz_a are
+// in scaled_dx_, scaled_dz_ from the max_step(affine) that set σ.
 void StepStrategy::corrector(KktSystem& kkt, const Direction& affine, Step& step) {
   const double sigma = step.sigma;
-  cones_.mul_Winv(affine.x, scaled_dx_);
-  cones_.mul_W(affine.z, scaled_dz_);
   cones_.jordan_product(scaled_dx_, scaled_dz_, corr_);
   ds_ = -lambda_sq_ - corr_ + (sigma * mu_) * e_;
   kkt.solve(1.0 - sigma, ds_, -tau_ * kappa_ - affine.tau * affine.kappa + sigma * mu_,
