@@ -78,7 +78,87 @@ struct SparseCholesky::Impl {
   // permutes with one transpose instead of two (cholmod_factorize.c).
   std::vector<int> upper_col_ptr, upper_row_ind, lower_to_upper;
   std::vector<double> upper_values;
+
+  void set_upper_pattern(int n, const int* col_ptr, const int* row_ind);
+  cholmod_factor* analyze_keeping_trailing(int n, int trailing);
 };
+
+// `matrix` becomes the pattern of the upper triangle (the lower one transposed), with
+// lower_to_upper mapping each lower-triangle position to its upper-triangle position.
+void SparseCholesky::Impl::set_upper_pattern(int n, const int* col_ptr, const int* row_ind) {
+  cholmod_sparse& a = matrix;
+  std::memset(&a, 0, sizeof a);
+  a.nrow = static_cast<size_t>(n);
+  a.ncol = static_cast<size_t>(n);
+  const int nnz = col_ptr[n];
+  auto& up = upper_col_ptr;
+  auto& ui = upper_row_ind;
+  auto& map = lower_to_upper;
+  up.assign(static_cast<std::size_t>(n) + 1, 0);
+  ui.resize(static_cast<std::size_t>(nnz));
+  map.resize(static_cast<std::size_t>(nnz));
+  upper_values.resize(static_cast<std::size_t>(nnz));
+  for (int p = 0; p < nnz; ++p) ++up[static_cast<std::size_t>(row_ind[p]) + 1];
+  for (int j = 0; j < n; ++j) up[j + 1] += up[j];
+  std::vector<int> next(up.begin(), up.end() - 1);
+  for (int j = 0; j < n; ++j) {
+    for (int p = col_ptr[j]; p < col_ptr[j + 1]; ++p) {
+      const int q = next[static_cast<std::size_t>(row_ind[p])]++;
+      ui[static_cast<std::size_t>(q)] = j;  // column j of the lower triangle is row j of the upper
+      map[static_cast<std::size_t>(p)] = q;
+    }
+  }
+  a.nzmax = static_cast<size_t>(nnz);
+  a.p = up.data();
+  a.i = ui.data();
+  a.x = nullptr;
+  a.stype = 1;  // upper triangle stored
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_PATTERN;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+}
+
+// Orders the leading block by the chosen method (its upper triangle is the first `lead` columns
+// of the upper triangle), then appends the trailing rows and analyses the whole matrix with that
+// permutation as given and no postorder, which would move them.
+cholmod_factor* SparseCholesky::Impl::analyze_keeping_trailing(int n, int trailing) {
+  cholmod_common& c = common;
+  cholmod_sparse& a = matrix;
+  const int lead = n - trailing;
+  std::vector<int> perm(static_cast<std::size_t>(n));
+  if (lead > 0) {
+    a.nrow = a.ncol = static_cast<size_t>(lead);
+    a.nzmax = static_cast<size_t>(upper_col_ptr[static_cast<std::size_t>(lead)]);
+    cholmod_factor* leading = cholmod_analyze(&a, &c);
+    if (!leading || c.status < CHOLMOD_OK) {
+      if (leading) cholmod_free_factor(&leading, &c);
+      throw ConicSetupError("CHOLMOD symbolic analysis failed (status " +
+                            std::to_string(c.status) + ")");
+    }
+    const int* leading_perm = static_cast<const int*>(leading->Perm);
+    std::copy(leading_perm, leading_perm + lead, perm.begin());
+    leading_ordering = leading->ordering;
+    cholmod_free_factor(&leading, &c);
+    a.nrow = a.ncol = static_cast<size_t>(n);
+    a.nzmax = static_cast<size_t>(upper_col_ptr[static_cast<std::size_t>(n)]);
+  }
+  for (int k = lead; k < n; ++k) perm[static_cast<std::size_t>(k)] = k;
+  const int nmethods = c.nmethods, method = c.method[0].ordering, postorder = c.postorder;
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.postorder = 0;
+  cholmod_factor* analysed = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &c);
+  c.nmethods = nmethods;
+  c.method[0].ordering = method;
+  c.postorder = postorder;
+  if (analysed && !std::equal(perm.begin(), perm.end(), static_cast<const int*>(analysed->Perm))) {
+    cholmod_free_factor(&analysed, &c);
+    throw ConicSetupError("CHOLMOD did not keep the given ordering");
+  }
+  return analysed;
+}
 
 SparseCholesky::SparseCholesky(Ordering ordering) : impl_(std::make_unique<Impl>()) {
   impl_->ordering = ordering;
@@ -123,76 +203,9 @@ void SparseCholesky::analyze(int n, const int* col_ptr, const int* row_ind, int 
   impl_->trailing = trailing;
   ++num_analyses_;
   if (n == 0) return;  // no equality rows: nothing to factor
-  cholmod_sparse& a = impl_->matrix;
-  std::memset(&a, 0, sizeof a);
-  a.nrow = static_cast<size_t>(n);
-  a.ncol = static_cast<size_t>(n);
-  const int nnz = col_ptr[n];
-  auto& up = impl_->upper_col_ptr;
-  auto& ui = impl_->upper_row_ind;
-  auto& map = impl_->lower_to_upper;
-  up.assign(static_cast<std::size_t>(n) + 1, 0);
-  ui.resize(static_cast<std::size_t>(nnz));
-  map.resize(static_cast<std::size_t>(nnz));
-  impl_->upper_values.resize(static_cast<std::size_t>(nnz));
-  for (int p = 0; p < nnz; ++p) ++up[static_cast<std::size_t>(row_ind[p]) + 1];
-  for (int j = 0; j < n; ++j) up[j + 1] += up[j];
-  std::vector<int> next(up.begin(), up.end() - 1);
-  for (int j = 0; j < n; ++j) {
-    for (int p = col_ptr[j]; p < col_ptr[j + 1]; ++p) {
-      const int q = next[static_cast<std::size_t>(row_ind[p])]++;
-      ui[static_cast<std::size_t>(q)] = j;  // column j of the lower triangle is row j of the upper
-      map[static_cast<std::size_t>(p)] = q;
-    }
-  }
-  a.nzmax = static_cast<size_t>(nnz);
-  a.p = up.data();
-  a.i = ui.data();
-  a.x = nullptr;
-  a.stype = 1;  // upper triangle stored
-  a.itype = CHOLMOD_INT;
-  a.xtype = CHOLMOD_PATTERN;
-  a.dtype = CHOLMOD_DOUBLE;
-  a.sorted = 1;
-  a.packed = 1;
-  if (trailing == 0) {
-    impl_->factor = cholmod_analyze(&a, &c);
-  } else {
-    // Order the leading block by the chosen method (its upper triangle is the first `lead`
-    // columns of the upper triangle), then append the trailing rows and analyse the whole
-    // matrix with that permutation as given and no postorder, which would move them.
-    const int lead = n - trailing;
-    std::vector<int> perm(static_cast<std::size_t>(n));
-    if (lead > 0) {
-      a.nrow = a.ncol = static_cast<size_t>(lead);
-      a.nzmax = static_cast<size_t>(up[static_cast<std::size_t>(lead)]);
-      cholmod_factor* leading = cholmod_analyze(&a, &c);
-      if (!leading || c.status < CHOLMOD_OK) {
-        if (leading) cholmod_free_factor(&leading, &c);
-        throw ConicSetupError("CHOLMOD symbolic analysis failed (status " +
-                              std::to_string(c.status) + ")");
-      }
-      const int* leading_perm = static_cast<const int*>(leading->Perm);
-      std::copy(leading_perm, leading_perm + lead, perm.begin());
-      impl_->leading_ordering = leading->ordering;
-      cholmod_free_factor(&leading, &c);
-      a.nrow = a.ncol = static_cast<size_t>(n);
-      a.nzmax = static_cast<size_t>(nnz);
-    }
-    for (int k = lead; k < n; ++k) perm[static_cast<std::size_t>(k)] = k;
-    const int nmethods = c.nmethods, method = c.method[0].ordering, postorder = c.postorder;
-    c.nmethods = 1;
-    c.method[0].ordering = CHOLMOD_GIVEN;
-    c.postorder = 0;
-    impl_->factor = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &c);
-    c.nmethods = nmethods;
-    c.method[0].ordering = method;
-    c.postorder = postorder;
-    if (impl_->factor &&
-        !std::equal(perm.begin(), perm.end(), static_cast<const int*>(impl_->factor->Perm))) {
-      throw ConicSetupError("CHOLMOD did not keep the given ordering");
-    }
-  }
+  impl_->set_upper_pattern(n, col_ptr, row_ind);
+  impl_->factor = trailing == 0 ? cholmod_analyze(&impl_->matrix, &c)
+                                : impl_->analyze_keeping_trailing(n, trailing);
   if (!impl_->factor || c.status < CHOLMOD_OK) {
     throw ConicSetupError("CHOLMOD symbolic analysis failed (status " + std::to_string(c.status) +
                           ")");
