@@ -79,21 +79,35 @@ def run(binary, problem, extra):
     return json.loads(result.stdout.strip().splitlines()[-1])
 
 
+def relative_difference(a, b):
+    """|a − b| / |a| (|b| when a is 0); nan when either is not a number."""
+    if a != a or b != b:
+        return float("nan")
+    return abs(a - b) / abs(a) if a != 0 else abs(b)
+
+
 def compare(base, new, problems, extra, tol):
     header = f"{'problem':28s} {'iter base/new':>13s} {'obj rel diff':>12s}  {'status base':16s} same"
     print(header)
     print("-" * len(header))
     ok = True
+    worst, iterations = 0.0, [0, 0]
     for problem in problems:
         a, b = run(base, problem, extra), run(new, problem, extra)
         pa, pb = a["primal_objective"], b["primal_objective"]
-        rel = abs(pa - pb) / max(1.0, abs(pa)) if pa == pa and pb == pb else float("nan")
+        rel = relative_difference(pa, pb)
+        both_nan = pa != pa and pb != pb  # e.g. an infeasible problem's primal objective
         same_status = a["status"] == b["status"]
-        good = same_status and b["iterations"] <= a["iterations"] and (rel <= tol or (rel != rel and pa != pa and pb != pb))
+        good = same_status and b["iterations"] <= a["iterations"] and (rel <= tol or both_nan)
         ok &= good
+        worst = max(worst, rel) if rel == rel else worst
+        iterations[0] += a["iterations"]
+        iterations[1] += b["iterations"]
         iters = f"{a['iterations']}/{b['iterations']}"
         print(f"{problem.stem:28s} {iters:>13s} {rel:12.2e}  {a['status']:16s} {'yes' if same_status else 'NO'}"
               f"{'' if good else '   <-- differs'}")
+    print(f"{len(problems)} problems, iterations {iterations[0]}/{iterations[1]}, largest objective "
+          f"difference {worst:.2e} (relative): {'same path' if ok else 'DIFFERENT'}")
     return ok
 
 
