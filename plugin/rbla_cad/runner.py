@@ -208,12 +208,40 @@ class Runner(object):
         for the interior-point table (iteration events). cancel: a threading.Event or a
         callable returning True to stop.
         """
+        return self._analysis("solve", [], model, result_path, svg_dir, progress, cancel,
+                              timeout, verbose, workdir, keep_files)
+
+    def worst_direction(self, model, tolerance=None, max_directions=None, **kwargs):
+        """``rbla worst-direction``: the horizontal seismic direction the structure carries
+        least. The outcome's result is the analysis along it; ``result.data["worst_direction"]``
+        holds the search (alpha_min, angle, certified lower bound, every direction tried).
+        Other keyword arguments as for solve()."""
+        extra = []
+        if tolerance is not None:
+            extra += ["--tolerance", repr(float(tolerance))]
+        if max_directions is not None:
+            extra += ["--max-directions", str(int(max_directions))]
+        return self._analysis("worst-direction", extra, model, **_analysis_kwargs(kwargs))
+
+    def critical_friction(self, model, target_alpha=None, tolerance=None, **kwargs):
+        """``rbla critical-friction``: the smallest factor on every friction coefficient at
+        which the structure stands (or carries target_alpha). The outcome's result is the
+        analysis at that factor; ``result.data["critical_friction"]`` holds the search."""
+        extra = []
+        if target_alpha is not None:
+            extra += ["--target-alpha", repr(float(target_alpha))]
+        if tolerance is not None:
+            extra += ["--tolerance", repr(float(tolerance))]
+        return self._analysis("critical-friction", extra, model, **_analysis_kwargs(kwargs))
+
+    def _analysis(self, command, extra, model, result_path=None, svg_dir=None, progress=None,
+                  cancel=None, timeout=None, verbose=True, workdir=None, keep_files=False):
         tmp = tempfile.mkdtemp(prefix="rbla_", dir=workdir)
         try:
             model_path = _model_to_file(model, tmp)
             out_path = os.path.abspath(result_path) if result_path else \
                 os.path.join(tmp, "result.json")
-            args = ["solve", model_path, "-o", out_path]
+            args = [command, model_path, "-o", out_path] + list(extra)
             if svg_dir:
                 args += ["--svg", os.path.abspath(svg_dir)]
             if verbose:
@@ -361,6 +389,17 @@ class Runner(object):
             raise SolverTimeoutError("the solver did not finish within %g s and was stopped"
                                      % float(timeout), code, stderr)
         return code, stdout, stderr
+
+
+_ANALYSIS_KWARGS = ("result_path", "svg_dir", "progress", "cancel", "timeout", "verbose", "workdir",
+                    "keep_files")
+
+
+def _analysis_kwargs(kwargs):
+    unknown = set(kwargs) - set(_ANALYSIS_KWARGS)
+    if unknown:
+        raise TypeError("unexpected keyword arguments: %s" % ", ".join(sorted(unknown)))
+    return kwargs
 
 
 def _cancelled(cancel):

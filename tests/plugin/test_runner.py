@@ -166,6 +166,19 @@ class SolverRunTest(unittest.TestCase):
         self.assertAlmostEqual(reac[0]["force"][0], -18.0, places=4)  # -alpha W
         self.assertAlmostEqual(reac[0]["point"][0], 0.5, places=4)    # at the hinge edge
 
+    def test_worst_direction_and_critical_friction(self):
+        # The 1 x 1 x 2 block tips at alpha = 0.5 along its four edge normals; sliding needs mu.
+        out = self.runner.worst_direction(_support.sample("block.json"), verbose=False)
+        search = out.result.data["worst_direction"]
+        self.assertAlmostEqual(search["load_multiplier"], 0.5, places=6)
+        self.assertTrue(search["certified"])
+        self.assertEqual(jsonschema_lite.validate_result(out.result.data), [])
+        out = self.runner.critical_friction(_support.sample("block.json"), target_alpha=0.3,
+                                            tolerance=1e-6, verbose=False)
+        self.assertAlmostEqual(out.result.data["critical_friction"]["friction"], 0.3, places=5)
+        with self.assertRaises(TypeError):
+            self.runner.critical_friction(_support.sample("block.json"), target=0.3)
+
     def test_arch_sample(self):
         d = tempfile.mkdtemp()
         try:
