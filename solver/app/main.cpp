@@ -220,7 +220,7 @@ int run_info(const CommonOptions& options) {
       << ", geometry " << seconds_text(loaded.timings.geometry_seconds) << ", detection "
       << seconds_text(loaded.timings.detect_seconds) << ")\n";
   if (!options.output_path.empty()) {
-    rbla::io::StageTimings timings = loaded.timings;
+    rbla::model::StageTimings timings = loaded.timings;
     timings.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const nlohmann::json result = rbla::io::model_only_result(m, timings, options.model_path);
     return write_output(options.output_path, result.dump(1) + "\n");
@@ -269,7 +269,7 @@ int run_solve(const CommonOptions& options) {
   }
   (stdout_taken ? std::cerr : std::cout) << shown(result.verdict_text) << "\n";
 
-  rbla::io::StageTimings timings = loaded.timings;
+  rbla::model::StageTimings timings = loaded.timings;
   const auto write_start = std::chrono::steady_clock::now();
   if (!options.svg_dir.empty()) {
     rbla::io::make_folder(options.svg_dir);

@@ -84,7 +84,7 @@ json warning_summary_json(const std::vector<model::Warning>& warnings) {
   return summary;
 }
 
-json model_only_result(const model::Model& model, const StageTimings& timings, const std::string& source) {
+json model_only_result(const model::Model& model, const model::StageTimings& timings, const std::string& source) {
   json result{{"schema_version", "1.2.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
@@ -118,7 +118,7 @@ const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"
 /// Numbers the solver reports as -1e-13 for a force that is zero: the schema says >= 0.
 double non_negative(double value) { return value < 0.0 ? 0.0 : value; }
 
-json timings_json(const StageTimings& timings, const analysis::AnalysisResult& result) {
+json timings_json(const model::StageTimings& timings, const analysis::AnalysisResult& result) {
   return json{{"read_seconds", timings.read_seconds},       {"validate_seconds", timings.validate_seconds},
               {"geometry_seconds", timings.geometry_seconds}, {"detect_seconds", timings.detect_seconds},
               {"assemble_seconds", result.assemble_seconds},  {"solve_seconds", result.solve_seconds},
@@ -160,7 +160,7 @@ json connectivity_json(const model::Model& model, const analysis::Connectivity& 
 }  // namespace
 
 json analysis_result_json(const model::Model& model, const analysis::AnalysisResult& result,
-                          const StageTimings& timings, const std::string& source) {
+                          const model::StageTimings& timings, const std::string& source) {
   using analysis::Verdict;
   const double l = model.units.length_to_m;
   const double f = model.units.force_to_kN;
