@@ -461,50 +461,34 @@ void append_svg_open(std::string& out, double width, double height, const std::s
   out += "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
 }
 
-}  // namespace
-
-SvgView mechanism_view(const model::Model& model, const AnalysisResult& result, const SvgOptions& options) {
-  return build_scene(model, result, options).view;
-}
-
-std::string mechanism_svg(const model::Model& model, const AnalysisResult& result, const SvgOptions& options) {
-  const Scene scene = build_scene(model, result, options);
-  const SvgView& view = scene.view;
-  const std::string title = title_text(model, result);
-
-  std::string out;
-  out.reserve(4096 + model.blocks.size() * 400);
-  append_svg_open(out, view.width, view.height, title);
-  if (!result.verdict_text.empty()) out += "<desc>" + escape(result.verdict_text) + "</desc>\n";
-  append_text(out, kMargin, 32, title, "font-size=\"20\" font-weight=\"bold\"");
-  append_text(out, kMargin, 56, subtitle_text(model, result, view), "font-size=\"13\" fill=\"#444\"");
-  append_legend(out, view.width, 84);
-
-  // Undisplaced outlines under everything, as one path: a thin reference, not a second model.
-  if (view.amplitude > 0.0) {
-    std::string d;
-    for (const model::Block& block : model.blocks) {
-      for (const std::vector<int>& face : block.faces) {
-        if (!valid_face(face, block.vertices.size())) continue;
-        const Vec3 normal = newell_normal(block.vertices, face);
-        if (normal.dot(view.toward) <= 1e-9 * normal.norm()) continue;
-        append_polygon_path(d, view, block.vertices, face);
-      }
-    }
-    if (!d.empty()) {
-      out += "<path fill=\"none\" stroke=\"" + std::string(kGhostColour) +
-             "\" stroke-width=\"0.6\" stroke-linejoin=\"round\" d=\"" + d + "\"/>\n";
+/// Undisplaced outlines under everything, as one path: a thin reference, not a second model.
+void append_ghost_outlines(std::string& out, const model::Model& model, const SvgView& view) {
+  if (!(view.amplitude > 0.0)) return;
+  std::string d;
+  for (const model::Block& block : model.blocks) {
+    for (const std::vector<int>& face : block.faces) {
+      if (!valid_face(face, block.vertices.size())) continue;
+      const Vec3 normal = newell_normal(block.vertices, face);
+      if (normal.dot(view.toward) <= 1e-9 * normal.norm()) continue;
+      append_polygon_path(d, view, block.vertices, face);
     }
   }
+  if (!d.empty()) {
+    out += "<path fill=\"none\" stroke=\"" + std::string(kGhostColour) +
+           "\" stroke-width=\"0.6\" stroke-linejoin=\"round\" d=\"" + d + "\"/>\n";
+  }
+}
 
-  // Painter's algorithm over front faces only: with back faces culled, sorting by mean depth is
-  // right for convex blocks that do not interpenetrate, which is what a rigid-block model is.
-  struct FaceToDraw {
-    double depth;
-    std::size_t block;
-    std::size_t face;
-    double facing;  // cosine between the face normal and the direction to the viewer
-  };
+struct FaceToDraw {
+  double depth;
+  std::size_t block;
+  std::size_t face;
+  double facing;  // cosine between the face normal and the direction to the viewer
+};
+
+/// The displaced blocks' faces that face the viewer, farthest first.
+std::vector<FaceToDraw> front_faces_back_to_front(const model::Model& model, const Scene& scene) {
+  const SvgView& view = scene.view;
   std::vector<FaceToDraw> faces;
   for (std::size_t b = 0; b < model.blocks.size(); ++b) {
     const model::Block& block = model.blocks[b];
@@ -523,19 +507,27 @@ std::string mechanism_svg(const model::Model& model, const AnalysisResult& resul
   }
   std::stable_sort(faces.begin(), faces.end(),
                    [](const FaceToDraw& a, const FaceToDraw& b) { return a.depth < b.depth; });
+  return faces;
+}
+
+/// Painter's algorithm over front faces only: with back faces culled, sorting by mean depth is
+/// right for convex blocks that do not interpenetrate, which is what a rigid-block model is.
+void append_blocks(std::string& out, const model::Model& model, const AnalysisResult& result, const Scene& scene) {
   out += "<g stroke=\"#333333\" stroke-width=\"0.6\" stroke-linejoin=\"round\">\n";
-  for (const FaceToDraw& item : faces) {
+  for (const FaceToDraw& item : front_faces_back_to_front(model, scene)) {
     const model::Block& block = model.blocks[item.block];
     const BlockMotion* motion = motion_of(result, item.block);
     const int rgb = block.is_support() ? kSupportRgb : (motion && motion->moving ? kMovingRgb : kRestingRgb);
     out += "<path fill=\"" + shaded(rgb, 0.7 + 0.3 * item.facing) + "\" d=\"";
-    append_polygon_path(out, view, scene.displaced[item.block], block.faces[item.face]);
+    append_polygon_path(out, scene.view, scene.displaced[item.block], block.faces[item.face]);
     out += "\"><title>" + escape(block.id) + "</title></path>\n";
   }
   out += "</g>\n";
+}
 
-  // Cracked interfaces on top so hinges show even where a block face would hide them; moved
-  // with block_a, whose face they lie on.
+/// Cracked interfaces on top so hinges show even where a block face would hide them; moved
+/// with block_a, whose face they lie on.
+void append_cracks(std::string& out, const model::Model& model, const AnalysisResult& result, const Scene& scene) {
   std::string cracks;
   for (int index : result.mechanism.cracked_interfaces) {
     if (index < 0 || static_cast<std::size_t>(index) >= model.interfaces.size()) continue;
@@ -551,13 +543,36 @@ std::string mechanism_svg(const model::Model& model, const AnalysisResult& resul
     cracks += "<path stroke=\"" + std::string(colour) + "\" fill=\"" + colour + "\" d=\"";
     for (std::size_t i = 0; i < contact.polygon.size(); ++i) {
       cracks += i == 0 ? 'M' : 'L';
-      append_point(cracks, view, motion.apply(contact.polygon[i]));
+      append_point(cracks, scene.view, motion.apply(contact.polygon[i]));
     }
     cracks += "Z\"><title>" + escape(contact.id) + ": " + state_words(state) + "</title></path>\n";
   }
   if (!cracks.empty()) {
     out += "<g stroke-width=\"3\" fill-opacity=\"0.3\" stroke-linejoin=\"round\">\n" + cracks + "</g>\n";
   }
+}
+
+}  // namespace
+
+SvgView mechanism_view(const model::Model& model, const AnalysisResult& result, const SvgOptions& options) {
+  return build_scene(model, result, options).view;
+}
+
+std::string mechanism_svg(const model::Model& model, const AnalysisResult& result, const SvgOptions& options) {
+  const Scene scene = build_scene(model, result, options);
+  const SvgView& view = scene.view;
+  const std::string title = title_text(model, result);
+
+  std::string out;
+  out.reserve(4096 + model.blocks.size() * 400);
+  append_svg_open(out, view.width, view.height, title);
+  if (!result.verdict_text.empty()) out += "<desc>" + escape(result.verdict_text) + "</desc>\n";
+  append_text(out, kMargin, 32, title, "font-size=\"20\" font-weight=\"bold\"");
+  append_text(out, kMargin, 56, subtitle_text(model, result, view), "font-size=\"13\" fill=\"#444\"");
+  append_legend(out, view.width, 84);
+  append_ghost_outlines(out, model, view);
+  append_blocks(out, model, result, scene);
+  append_cracks(out, model, result, scene);
   out += "</svg>\n";
   return out;
 }
