@@ -1,7 +1,10 @@
 // The rbla command as a user runs it: exit codes, messages naming the field, no partial output.
 #include <gtest/gtest.h>
 
+#include "io/model_reader.hpp"
 #include "support/cli_runner.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <sys/wait.h>
 
@@ -181,4 +184,52 @@ TEST_F(Cli, ThreadsOptionTakesOneOrTwo) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("--threads"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("r3.json")));
+}
+
+TEST_F(Cli, WorstDirectionWritesAValidResultWithTheSearchAndItsPictures) {
+  // A 1 x 1 x 2 block on a wider base tips at alpha = 0.5 / 1 (half its width over its
+  // centroid's height) along the four edge normals, before it slides (default friction 0.6).
+  const auto r = run("worst-direction -q " + write("m.json", box_model()) + " -o " + path("w.json") + " --svg " +
+                     path("pictures"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Weakest horizontal direction at"), std::string::npos) << r.output;
+  std::ifstream in(path("w.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
+  const auto result = nlohmann::json::parse(text.str());
+  const auto& w = result.at("worst_direction");
+  EXPECT_NEAR(w.at("load_multiplier").get<double>(), 0.5, 0.5e-6);
+  EXPECT_TRUE(w.at("certified").get<bool>());
+  EXPECT_LE(w.at("lower_bound").get<double>(), 0.5 + 1e-9);
+  EXPECT_EQ(w.at("num_evaluations").get<int>(), static_cast<int>(w.at("evaluations").size()));
+  // The rest of the file is the analysis along the weakest direction.
+  EXPECT_DOUBLE_EQ(result.at("load_multiplier").get<double>(), w.at("load_multiplier").get<double>());
+  EXPECT_TRUE(fs::exists(path("pictures/mechanism.svg")));
+  EXPECT_TRUE(fs::exists(path("pictures/worst_direction.svg")));
+}
+
+TEST_F(Cli, WorstDirectionRefusesASettlementModelNamingTheField) {
+  std::string model = box_model(R"("analysis": {"type": "settlement"}, )");
+  model.replace(model.find(R"("role": "fixed")"), 15, R"("role": "moving_support")");
+  const auto r = run("worst-direction " + write("m.json", model) + " -o " + path("w.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("/analysis/type"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("w.json")));
+}
+
+TEST_F(Cli, CriticalFrictionWritesAValidResultWithTheBracket) {
+  // The same block carries alpha = min(mu, 0.5): alpha 0.3 needs mu = 0.3, the given 0.6 times 0.5.
+  const auto r = run("critical-friction -q " + write("m.json", box_model()) + " --target-alpha 0.3 --tolerance 1e-6 -o " +
+                     path("c.json") + " --svg " + path("pictures"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(path("c.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
+  const auto c = nlohmann::json::parse(text.str()).at("critical_friction");
+  EXPECT_EQ(c.at("outcome"), "bracketed");
+  EXPECT_NEAR(c.at("friction").get<double>(), 0.3, 1e-6);
+  EXPECT_LE(c.at("factor_lower").get<double>(), c.at("factor").get<double>());
+  EXPECT_TRUE(fs::exists(path("pictures/critical_friction.svg")));
 }

@@ -101,6 +101,18 @@ struct NonAssociativeStep {
   double seconds = 0.0;       ///< of the step's conic solve
 };
 
+/// First derivatives of alpha at the collapse found (analysis/sensitivities.hpp): associative
+/// friction, load multiplier only. Where the collapse mechanism would change with the parameter
+/// (a kink of alpha), these are the derivatives along this mechanism: one-sided values.
+struct Sensitivities {
+  /// d alpha / d s with every interface's friction coefficient mu_k scaled to s mu_k, at s = 1.
+  double friction_factor = 0.0;
+  /// (interface index, d alpha / d mu_k) for the interfaces where it is not zero.
+  std::vector<std::pair<int, double>> interface_friction;
+  /// (block index, d alpha / d unit weight, in 1 / (kN/m^3)) for the blocks that move.
+  std::vector<std::pair<int, double>> block_unit_weight;
+};
+
 struct ProblemSize {
   long num_variables = 0;
   long num_equality_rows = 0;
@@ -170,6 +182,7 @@ struct AnalysisResult {
   /// The values of all states compatible with the mechanism found (alpha, or R in kN): non-
   /// associative collapse is not unique; the conservative end is the one reported.
   std::optional<std::pair<double, double>> non_associative_range;
+  std::optional<Sensitivities> sensitivities;  ///< associative load-multiplier collapse only
   ProblemSize size;
 
   double assemble_seconds = 0.0;

@@ -1,10 +1,13 @@
 #include "analysis/limit_analysis.hpp"
 
+#include "analysis/sensitivities.hpp"
+
 #include "analysis/connectivity.hpp"
 #include "analysis/formulation.hpp"
 #include "analysis/initial_reaction.hpp"
 #include "analysis/mechanism.hpp"
 #include "analysis/non_associative.hpp"
+#include "analysis/sensitivities.hpp"
 #include "analysis/solve_steps.hpp"
 #include "model/errors.hpp"
 
@@ -368,7 +371,10 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
     if (request.friction_model == model::FrictionModel::NonAssociative) {
       run_non_associative(m, formulation, solver, solution, deadline, value, result);
     }
-    if (result.verdict == Verdict::Collapse) record_value(m, formulation, value, result);
+    if (result.verdict == Verdict::Collapse) {
+      record_value(m, formulation, value, result);
+      result.sensitivities = load_multiplier_sensitivities(m, result);
+    }
   }
   write_verdict_text(m, result);
   return result;

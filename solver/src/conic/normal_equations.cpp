@@ -20,13 +20,34 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
                                  const std::vector<ScalingBlock>& blocks,
                                  const std::vector<bool>& is_dense_column, Ordering ordering,
                                  ForkJoin* fork_join)
-    : m_(A.rows()), cholesky_(ordering), fork_join_(fork_join) {
+    : m_(A.rows()), fork_join_(fork_join) {
+  std::vector<std::vector<int>> lower_rows_of_col(static_cast<std::size_t>(m_));
+  collect_blocks(A, blocks, is_dense_column, lower_rows_of_col);
+  build_pattern(lower_rows_of_col);
+  build_value_map();
+  std::size_t max_scratch = 0;
+  for (const BlockData& bd : blocks_) {
+    max_scratch = std::max(max_scratch, bd.rows.size() * static_cast<std::size_t>(bd.size));
+  }
+  for (auto& scratch : scratch_) scratch.assign(max_scratch, 0.0);
+  set_A_values(A);
+  ++num_analyses_;
+  multiply_split_ = static_cast<Eigen::Index>(
+      std::lower_bound(col_ptr_.begin(), col_ptr_.end(), col_ptr_.back() / 2) - col_ptr_.begin());
+  multiply_split_ = std::min(multiply_split_, m_);
+  choose_backend(ordering);
+  if (!dense_blocks_.empty()) dense_D_.setZero(m_, static_cast<Eigen::Index>(dense_blocks_.size()));
+}
+
+// Per block: its rows, where its entries of A go in the local dense copy of its columns, and
+// (unless it is a dense column) the rows its terms add to in each column of M's lower triangle.
+void NormalEquations::collect_blocks(const Eigen::SparseMatrix<double>& A,
+                                     const std::vector<ScalingBlock>& blocks,
+                                     const std::vector<bool>& is_dense_column,
+                                     std::vector<std::vector<int>>& lower_rows_of_col) {
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
   nnz_to_local_.assign(static_cast<std::size_t>(A.nonZeros()), -1);
-
-  // Per block: its rows and the local dense copy of its columns.
-  std::vector<std::vector<int>> lower_rows_of_col(static_cast<std::size_t>(m_));
   std::size_t a_total = 0, w2_total = 0, map_total = 0;
   blocks_.reserve(blocks.size());
   for (const ScalingBlock& sb : blocks) {
@@ -65,8 +86,11 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
   }
   local_A_.assign(a_total, 0.0);
   packed_W2_.assign(w2_total, 0.0);
+  value_map_.resize(map_total);
+}
 
-  // Pattern of M_s's lower triangle, with the full diagonal (regularisation lives there).
+// Pattern of M_s's lower triangle, with the full diagonal (regularisation lives there).
+void NormalEquations::build_pattern(std::vector<std::vector<int>>& lower_rows_of_col) {
   col_ptr_.assign(static_cast<std::size_t>(m_) + 1, 0);
   for (Eigen::Index i = 0; i < m_; ++i) {
     auto& col = lower_rows_of_col[static_cast<std::size_t>(i)];
@@ -86,9 +110,10 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
     std::vector<int>().swap(col);
   }
   values_.assign(row_ind_.size(), 0.0);
+}
 
-  // Where each block's contributions land.
-  value_map_.resize(map_total);
+// Where each block's contributions land in M's values.
+void NormalEquations::build_value_map() {
   for (const BlockData& bd : blocks_) {
     if (bd.dense) continue;
     std::size_t cursor = bd.map_offset;
@@ -103,48 +128,32 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
       }
     }
   }
-  std::size_t max_scratch = 0;
-  for (const BlockData& bd : blocks_) {
-    max_scratch = std::max(max_scratch, bd.rows.size() * static_cast<std::size_t>(bd.size));
-  }
-  for (auto& scratch : scratch_) scratch.assign(max_scratch, 0.0);
+}
 
-  set_A_values(A);
-  ++num_analyses_;
-  multiply_split_ = static_cast<Eigen::Index>(
-      std::lower_bound(col_ptr_.begin(), col_ptr_.end(), col_ptr_.back() / 2) - col_ptr_.begin());
-  multiply_split_ = std::min(multiply_split_, m_);
-  if (fork_join_) {
-    split_ = std::make_unique<SplitCholesky>(ordering, *fork_join_);
-    if (!split_->analyze(static_cast<int>(m_), col_ptr_.data(), row_ind_.data())) split_.reset();
-  }
-  if (split_) {
-    // A block lies in one domain and the separator (the separator decouples the domains); one
-    // on the separator alone counts for domain 0. Only blocks that reach the separator add to a
-    // share.
-    const auto& part = split_->part_of_row();
-    for (std::size_t k = 0; k < blocks_.size(); ++k) {
-      BlockData& bd = blocks_[k];
-      if (bd.dense) continue;
-      int domain = 0;
-      bool on_separator = false;
-      for (int row : bd.rows) {
-        const unsigned char p = part[static_cast<std::size_t>(row)];
-        if (p == 2)
-          on_separator = true;
-        else
-          domain = p;
-      }
-      if (on_separator) bd.separator_share = static_cast<signed char>(domain);
-      domain_blocks_[domain].push_back(static_cast<int>(k));
+void NormalEquations::choose_backend(Ordering ordering) {
+  solver_ = make_linear_solver(ordering, fork_join_, static_cast<int>(m_), col_ptr_.data(),
+                               row_ind_.data());
+  split_ = dynamic_cast<SplitDomainSolver*>(solver_.get());
+  if (!split_) return;
+  // A block lies in one domain and the separator (the separator decouples the domains); one on
+  // the separator alone counts for domain 0. Only blocks that reach the separator add to a
+  // share.
+  const auto& part = split_->split().part_of_row();
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    BlockData& bd = blocks_[k];
+    if (bd.dense) continue;
+    int domain = 0;
+    bool on_separator = false;
+    for (int row : bd.rows) {
+      const unsigned char p = part[static_cast<std::size_t>(row)];
+      if (p == 2)
+        on_separator = true;
+      else
+        domain = p;
     }
-    for (auto& share : separator_share_)
-      share.assign(static_cast<std::size_t>(split_->num_separator_slots()), 0.0);
-  } else {
-    cholesky_.analyze(static_cast<int>(m_), col_ptr_.data(), row_ind_.data());
+    if (on_separator) bd.separator_share = static_cast<signed char>(domain);
+    domain_blocks_[domain].push_back(static_cast<int>(k));
   }
-
-  if (!dense_blocks_.empty()) dense_D_.setZero(m_, static_cast<Eigen::Index>(dense_blocks_.size()));
 }
 
 void NormalEquations::set_A_values(const Eigen::SparseMatrix<double>& A) {
@@ -159,27 +168,7 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   FactorReport report;
   auto start = std::chrono::steady_clock::now();
   packed_W2_ = packed_W2;
-  std::fill(values_.begin(), values_.end(), 0.0);
-  for (auto& share : separator_share_) std::fill(share.begin(), share.end(), 0.0);
-  if (split_) {
-    // Each domain's blocks on their own thread: they write disjoint entries of M, except the
-    // separator–separator ones, which go to their domain's share only and are summed after.
-    const std::function<void()> domain0 = [this] {
-      for (int k : domain_blocks_[0]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[0]);
-    };
-    const std::function<void()> domain1 = [this] {
-      for (int k : domain_blocks_[1]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[1]);
-    };
-    fork_join_->run(domain0, domain1);
-    const std::vector<int>& positions = split_->separator_positions();
-    for (std::size_t slot = 0; slot < positions.size(); ++slot)
-      values_[static_cast<std::size_t>(positions[slot])] =
-          separator_share_[0][slot] + separator_share_[1][slot];
-  } else {
-    for (const BlockData& bd : blocks_) {
-      if (!bd.dense) add_block(bd, scratch_[0]);
-    }
-  }
+  assemble();
   double max_diag = 0;
   for (int p : diag_pos_) max_diag = std::max(max_diag, values_[static_cast<std::size_t>(p)]);
   report.assembly_seconds = seconds_since(start);
@@ -189,14 +178,9 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   // equilibrated, so the constant is relative to O(1) entries).
   constexpr double eps = std::numeric_limits<double>::epsilon();
   double shift = reg_static + eps * eps * max_diag;
-  // Two domains already take both cores: a BLAS team inside each would oversubscribe them.
-  const BlasThreads threads(split_ ? 1 : blas_threads);
+  const BlasThreads threads(solver_->blas_threads(blas_threads));
   for (int attempt = 0; attempt <= reg_max_retries; ++attempt) {
-    const bool factored =
-        split_ ? split_->factorize(values_.data(), separator_share_[0].data(),
-                                   separator_share_[1].data(), shift)
-               : cholesky_.factorize(values_.data(), shift);
-    if (factored) {
+    if (solver_->factorize(values_.data(), shift)) {
       report.ok = true;
       break;
     }
@@ -205,34 +189,61 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   }
   shift_ = shift;
   report.shift = shift;
-
-  if (report.ok && !dense_blocks_.empty()) {
-    const Eigen::Index k = static_cast<Eigen::Index>(dense_blocks_.size());
-    dense_Minv_D_.resize(m_, k);
-    Eigen::MatrixXd schur(k, k);
-    Eigen::VectorXd column, solved;
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const BlockData& bd =
-          blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
-      column.setZero(m_);
-      for (std::size_t a = 0; a < bd.rows.size(); ++a)
-        column[bd.rows[a]] = local_A_[bd.a_offset + a];
-      dense_D_.col(j) = column;
-      solved = column;
-      solve_factor(solved.data(), 1);
-      dense_Minv_D_.col(j) = solved;
-    }
-    schur.noalias() = dense_D_.transpose() * dense_Minv_D_;
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const BlockData& bd =
-          blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
-      const double d = std::max(packed_W2_[bd.w2_offset], 1e-300);
-      schur(j, j) += 1.0 / d;
-    }
-    dense_schur_.compute(schur);
-  }
+  if (report.ok && !dense_blocks_.empty()) factor_dense_schur();
   report.factor_seconds = seconds_since(start);
   return report;
+}
+
+// M_s's values from the blocks' terms A_k W²_k A_kᵀ (dense columns left out).
+void NormalEquations::assemble() {
+  std::fill(values_.begin(), values_.end(), 0.0);
+  if (!split_) {
+    for (const BlockData& bd : blocks_) {
+      if (!bd.dense) add_block(bd, scratch_[0]);
+    }
+    return;
+  }
+  for (int d = 0; d < 2; ++d) std::fill(split_->share(d).begin(), split_->share(d).end(), 0.0);
+  // Each domain's blocks on their own thread: they write disjoint entries of M, except the
+  // separator–separator ones, which go to their domain's share only and are summed after.
+  const std::function<void()> domain0 = [this] {
+    for (int k : domain_blocks_[0]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[0]);
+  };
+  const std::function<void()> domain1 = [this] {
+    for (int k : domain_blocks_[1]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[1]);
+  };
+  fork_join_->run(domain0, domain1);
+  const std::vector<int>& positions = split_->split().separator_positions();
+  for (std::size_t slot = 0; slot < positions.size(); ++slot)
+    values_[static_cast<std::size_t>(positions[slot])] =
+        split_->share(0)[slot] + split_->share(1)[slot];
+}
+
+// The bordered system's Schur complement Dᵀ M_s⁻¹ D + diag(1/d) (normal_equations.hpp), with
+// M_s⁻¹ D kept for the solves.
+void NormalEquations::factor_dense_schur() {
+  const Eigen::Index k = static_cast<Eigen::Index>(dense_blocks_.size());
+  dense_Minv_D_.resize(m_, k);
+  Eigen::MatrixXd schur(k, k);
+  Eigen::VectorXd column, solved;
+  for (Eigen::Index j = 0; j < k; ++j) {
+    const BlockData& bd =
+        blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
+    column.setZero(m_);
+    for (std::size_t a = 0; a < bd.rows.size(); ++a) column[bd.rows[a]] = local_A_[bd.a_offset + a];
+    dense_D_.col(j) = column;
+    solved = column;
+    solve_factor(solved.data(), 1);
+    dense_Minv_D_.col(j) = solved;
+  }
+  schur.noalias() = dense_D_.transpose() * dense_Minv_D_;
+  for (Eigen::Index j = 0; j < k; ++j) {
+    const BlockData& bd =
+        blocks_[static_cast<std::size_t>(dense_blocks_[static_cast<std::size_t>(j)])];
+    const double d = std::max(packed_W2_[bd.w2_offset], 1e-300);
+    schur(j, j) += 1.0 / d;
+  }
+  dense_schur_.compute(schur);
 }
 
 void NormalEquations::add_block(const BlockData& bd, std::vector<double>& scratch) {
@@ -243,8 +254,8 @@ void NormalEquations::add_block(const BlockData& bd, std::vector<double>& scratc
     // A block reaching the separator: its separator–separator terms go to its domain's share
     // alone (summed into M after both domains are assembled; the shares must be sums of their
     // own terms, as a difference of M's value and the other share could lose the small one).
-    const std::vector<int>& slot_of = split_->separator_slot();
-    std::vector<double>& share = separator_share_[static_cast<std::size_t>(bd.separator_share)];
+    const std::vector<int>& slot_of = split_->split().separator_slot();
+    std::vector<double>& share = split_->share(bd.separator_share);
     auto add = [&](std::size_t p, double term) {
       const int slot = slot_of[p];
       if (slot >= 0)
@@ -283,25 +294,12 @@ void NormalEquations::add_terms(const BlockData& bd, const double* Ak, const int
   }
 }
 
-void NormalEquations::solve_factor(double* x, int columns) {
-  if (split_)
-    split_->solve(x, columns, x);  // in place: it reads all of rhs before it writes
-  else
-    cholesky_.solve(x, columns);
-}
+void NormalEquations::solve_factor(double* x, int columns) { solver_->solve(x, columns); }
 
-long NormalEquations::factor_nonzeros() const {
-  return split_ ? split_->factor_nonzeros() : cholesky_.factor_nonzeros();
-}
-double NormalEquations::factor_bytes() const {
-  return split_ ? split_->factor_bytes() : cholesky_.factor_bytes();
-}
-double NormalEquations::factor_flops() const {
-  return split_ ? split_->factor_flops() : cholesky_.factor_flops();
-}
-std::string NormalEquations::backend_name() const {
-  return split_ ? split_->backend_name() : cholesky_.backend_name();
-}
+long NormalEquations::factor_nonzeros() const { return solver_->factor_nonzeros(); }
+double NormalEquations::factor_bytes() const { return solver_->factor_bytes(); }
+double NormalEquations::factor_flops() const { return solver_->factor_flops(); }
+std::string NormalEquations::backend_name() const { return solver_->name(); }
 
 void NormalEquations::solve_regularised(double* x, int columns) {
   num_factor_solves_ += columns;
@@ -331,7 +329,7 @@ void NormalEquations::solve_pair(const Eigen::VectorXd& rhs_a, const Eigen::Vect
 void NormalEquations::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
   // M v from the lower triangle assembled for the last factorisation (exact M_s, the shift δ is
   // CHOLMOD's), plus A_k (W²_k (A_kᵀ v)) for the dense columns kept out of it. Called once per CG
-  // step. Per block through A_k instead, this was 10 % of an 8051-block 3-D solve: every block
+  // step. Per block through A_k instead, a large share of a 3-D solve went there: every block
   // re-gathers the rows it touches, M's lower triangle visits each entry once.
   ++num_multiplies_;
   const int* col_ptr = col_ptr_.data();

@@ -28,8 +28,7 @@
 #include <vector>
 
 #include "cone.hpp"
-#include "sparse_cholesky.hpp"
-#include "split_cholesky.hpp"
+#include "linear_solver.hpp"
 
 namespace rbla::conic::detail {
 
@@ -99,6 +98,14 @@ class NormalEquations {
     bool dense = false;
     signed char separator_share = -1;  // SplitCholesky domain whose share gets its SS terms
   };
+  void collect_blocks(const Eigen::SparseMatrix<double>& A, const std::vector<ScalingBlock>& blocks,
+                      const std::vector<bool>& is_dense_column,
+                      std::vector<std::vector<int>>& lower_rows_of_col);
+  void build_pattern(std::vector<std::vector<int>>& lower_rows_of_col);
+  void build_value_map();
+  void choose_backend(Ordering ordering);
+  void assemble();
+  void factor_dense_schur();
   /// Adds block bd's terms A_k W²_k A_kᵀ to M (or to its domain's separator share).
   void add_block(const BlockData& bd, std::vector<double>& scratch);
   template <class Add>
@@ -118,11 +125,10 @@ class NormalEquations {
   Eigen::Index multiply_split_ = 0;           // with fork_join_: the helper's first column
   mutable Eigen::VectorXd multiply_other_;    // and its share of the product
   std::vector<double> scratch_[2];  // one per thread
-  SparseCholesky cholesky_;
   ForkJoin* fork_join_ = nullptr;
-  std::unique_ptr<SplitCholesky> split_;  // in use instead of cholesky_ when set
-  std::vector<int> domain_blocks_[2];     // with split_: the (non-dense) blocks of each domain
-  std::vector<double> separator_share_[2];
+  std::unique_ptr<LinearSolver> solver_;
+  SplitDomainSolver* split_ = nullptr;  // solver_, when it is the split one
+  std::vector<int> domain_blocks_[2];   // with split_: the (non-dense) blocks of each domain
   int num_analyses_ = 0;
   double shift_ = 0;
   long num_factor_solves_ = 0;

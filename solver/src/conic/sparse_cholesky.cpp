@@ -1,115 +1,66 @@
 #include "sparse_cholesky.hpp"
 
 #include <cholmod.h>
-#include <dlfcn.h>
 
 #include <algorithm>
 #include <cstring>
-#include <mutex>
 #include <vector>
 
 #include "rbla/conic/problem.hpp"
 
-namespace rbla::conic::detail {
-namespace {
-// Set by SerialOpenMp (below) around CHOLMOD's numeric factorisation.
-thread_local bool openmp_regions_inline = false;
-}  // namespace
-}  // namespace rbla::conic::detail
-
-/// libgomp's entry for `#pragma omp parallel` (GCC ≥ 4.9 ABI), interposed: CHOLMOD, linked to
-/// this program, calls this definition rather than libgomp's. Inside a SerialOpenMp scope the
-/// region's body runs on the calling thread, as an orphaned region (omp_get_num_threads() = 1,
-/// work-sharing constructs without a team are valid, OpenMP 5.2 §2.8); elsewhere it goes to
-/// libgomp's own GOMP_parallel unchanged.
-extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads, unsigned flags) {
-  if (rbla::conic::detail::openmp_regions_inline) {
-    fn(data);
-    return;
-  }
-  using Parallel = void (*)(void (*)(void*), void*, unsigned, unsigned);
-  static const auto real = reinterpret_cast<Parallel>(dlsym(RTLD_NEXT, "GOMP_parallel"));
-  if (real) {
-    real(fn, data, num_threads, flags);
-  } else {
-    fn(data);
-  }
+// Thread counts through the libraries' documented calls: OpenBLAS's openblas_set_num_threads
+// (an extension declared in its cblas.h) and OpenMP's omp_set_max_active_levels (OpenMP 5.2
+// §18.2.15). They are weak references: the program links whatever BLAS the system's libblas.so.3
+// alternative is (OpenBLAS, reference BLAS, BLIS...) and whatever OpenMP runtime CHOLMOD was
+// built with, if any; a call that no loaded library provides is a null pointer and leaves that
+// setting alone. Nothing here defines or replaces a library symbol.
+extern "C" {
+void openblas_set_num_threads(int threads) __attribute__((weak));
+int openblas_get_num_threads() __attribute__((weak));
+void omp_set_max_active_levels(int levels) __attribute__((weak));
+int omp_get_max_active_levels() __attribute__((weak));
 }
 
 namespace rbla::conic::detail {
 
 namespace {
-// Looked up at run time, so that any BLAS and any CHOLMOD build link: libblas.so.3 is a Debian
-// alternative (OpenBLAS, reference BLAS, BLIS...), libgomp comes in through CHOLMOD. A symbol
-// that is not there leaves that setting alone.
-using SetCountFn = void (*)(int);
-using GetCountFn = int (*)();
-template <class Fn>
-Fn find_symbol(const char* name) {
-  return reinterpret_cast<Fn>(dlsym(RTLD_DEFAULT, name));
-}
-const SetCountFn openblas_set_threads = find_symbol<SetCountFn>("openblas_set_num_threads");
-const GetCountFn openblas_get_threads = find_symbol<GetCountFn>("openblas_get_num_threads");
-const SetCountFn omp_set_levels = find_symbol<SetCountFn>("omp_set_max_active_levels");
-const GetCountFn omp_get_levels = find_symbol<GetCountFn>("omp_get_max_active_levels");
-
-/// Runs CHOLMOD's OpenMP regions on the calling thread alone for its lifetime. CHOLMOD 3 (Debian
-/// 12) opens a parallel region with a compiled-in team of CHOLMOD_OMP_NUM_THREADS = 4 for small
-/// loops inside every supernode's update (cholmod_core.h), whatever OMP_NUM_THREADS says; on two
-/// cores, with OpenBLAS's threads next to them, the team's hand-overs cost more than the loops.
-/// Seismic 3-D façade problem (1920 blocks, 29 factorisations): 1.60 s of factorisation with
-/// the team, 0.72 s without. Even a one-thread region costs libgomp a futex system call (its
-/// closing barrier wakes waiters unconditionally), tens of thousands per solve: the regions are
-/// run inline instead (GOMP_parallel above), and max-active-levels = 0 makes them one-thread
-/// regions where that interposition is not in effect.
+/// Makes CHOLMOD's OpenMP regions inactive (one thread) on the calling thread for its lifetime.
+/// CHOLMOD 3 (Debian 12) opens a parallel region with a compiled-in team of
+/// CHOLMOD_OMP_NUM_THREADS = 4 for small loops inside every supernode's update (cholmod_core.h),
+/// whatever OMP_NUM_THREADS says: on two cores, with OpenBLAS's threads and the solver's second
+/// thread next to it, the team's hand-overs cost more than the loops. A region is active only
+/// while fewer than max-active-levels regions enclose it, so 0 makes every region run on the
+/// encountering thread alone, num_threads clause or not (OpenMP 5.2 §10.1.1). The setting
+/// belongs to the calling thread's data environment (OpenMP ≥ 5.0, libgomp ≥ 11): the two
+/// domains of SplitCholesky, factored on two threads at once, each set and restore their own.
 class SerialOpenMp {
  public:
   SerialOpenMp() {
-    openmp_regions_inline = true;
-    if (!omp_set_levels || !omp_get_levels) return;
-    // max-active-levels is one process-wide setting and SplitCholesky factors on two threads at
-    // once: the first scope in saves and lowers it, the last one out restores it.
-    const std::lock_guard<std::mutex> lock(levels_mutex());
-    if (levels_users()++ == 0) {
-      levels_saved() = omp_get_levels();
-      omp_set_levels(0);
-    }
+    if (!omp_set_max_active_levels || !omp_get_max_active_levels) return;
+    saved_ = omp_get_max_active_levels();
+    omp_set_max_active_levels(0);
   }
   ~SerialOpenMp() {
-    openmp_regions_inline = false;
-    if (!omp_set_levels || !omp_get_levels) return;
-    const std::lock_guard<std::mutex> lock(levels_mutex());
-    if (--levels_users() == 0) omp_set_levels(levels_saved());
+    if (saved_ >= 0) omp_set_max_active_levels(saved_);
   }
   SerialOpenMp(const SerialOpenMp&) = delete;
   SerialOpenMp& operator=(const SerialOpenMp&) = delete;
 
  private:
-  static std::mutex& levels_mutex() {
-    static std::mutex mutex;
-    return mutex;
-  }
-  static int& levels_users() {
-    static int users = 0;
-    return users;
-  }
-  static int& levels_saved() {
-    static int saved = 0;
-    return saved;
-  }
+  int saved_ = -1;
 };
 }  // namespace
 
-int current_blas_threads() { return openblas_get_threads ? openblas_get_threads() : 0; }
+int current_blas_threads() { return openblas_get_num_threads ? openblas_get_num_threads() : 0; }
 
 BlasThreads::BlasThreads(int threads) {
-  if (threads <= 0 || !openblas_set_threads || !openblas_get_threads) return;
-  previous_ = openblas_get_threads();
-  openblas_set_threads(threads);
+  if (threads <= 0 || !openblas_set_num_threads || !openblas_get_num_threads) return;
+  previous_ = openblas_get_num_threads();
+  openblas_set_num_threads(threads);
 }
 
 BlasThreads::~BlasThreads() {
-  if (previous_ > 0) openblas_set_threads(previous_);
+  if (previous_ > 0) openblas_set_num_threads(previous_);
 }
 
 struct SparseCholesky::Impl {
@@ -127,7 +78,87 @@ struct SparseCholesky::Impl {
   // permutes with one transpose instead of two (cholmod_factorize.c).
   std::vector<int> upper_col_ptr, upper_row_ind, lower_to_upper;
   std::vector<double> upper_values;
+
+  void set_upper_pattern(int n, const int* col_ptr, const int* row_ind);
+  cholmod_factor* analyze_keeping_trailing(int n, int trailing);
 };
+
+// `matrix` becomes the pattern of the upper triangle (the lower one transposed), with
+// lower_to_upper mapping each lower-triangle position to its upper-triangle position.
+void SparseCholesky::Impl::set_upper_pattern(int n, const int* col_ptr, const int* row_ind) {
+  cholmod_sparse& a = matrix;
+  std::memset(&a, 0, sizeof a);
+  a.nrow = static_cast<size_t>(n);
+  a.ncol = static_cast<size_t>(n);
+  const int nnz = col_ptr[n];
+  auto& up = upper_col_ptr;
+  auto& ui = upper_row_ind;
+  auto& map = lower_to_upper;
+  up.assign(static_cast<std::size_t>(n) + 1, 0);
+  ui.resize(static_cast<std::size_t>(nnz));
+  map.resize(static_cast<std::size_t>(nnz));
+  upper_values.resize(static_cast<std::size_t>(nnz));
+  for (int p = 0; p < nnz; ++p) ++up[static_cast<std::size_t>(row_ind[p]) + 1];
+  for (int j = 0; j < n; ++j) up[j + 1] += up[j];
+  std::vector<int> next(up.begin(), up.end() - 1);
+  for (int j = 0; j < n; ++j) {
+    for (int p = col_ptr[j]; p < col_ptr[j + 1]; ++p) {
+      const int q = next[static_cast<std::size_t>(row_ind[p])]++;
+      ui[static_cast<std::size_t>(q)] = j;  // column j of the lower triangle is row j of the upper
+      map[static_cast<std::size_t>(p)] = q;
+    }
+  }
+  a.nzmax = static_cast<size_t>(nnz);
+  a.p = up.data();
+  a.i = ui.data();
+  a.x = nullptr;
+  a.stype = 1;  // upper triangle stored
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_PATTERN;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+}
+
+// Orders the leading block by the chosen method (its upper triangle is the first `lead` columns
+// of the upper triangle), then appends the trailing rows and analyses the whole matrix with that
+// permutation as given and no postorder, which would move them.
+cholmod_factor* SparseCholesky::Impl::analyze_keeping_trailing(int n, int trailing) {
+  cholmod_common& c = common;
+  cholmod_sparse& a = matrix;
+  const int lead = n - trailing;
+  std::vector<int> perm(static_cast<std::size_t>(n));
+  if (lead > 0) {
+    a.nrow = a.ncol = static_cast<size_t>(lead);
+    a.nzmax = static_cast<size_t>(upper_col_ptr[static_cast<std::size_t>(lead)]);
+    cholmod_factor* leading = cholmod_analyze(&a, &c);
+    if (!leading || c.status < CHOLMOD_OK) {
+      if (leading) cholmod_free_factor(&leading, &c);
+      throw ConicSetupError("CHOLMOD symbolic analysis failed (status " +
+                            std::to_string(c.status) + ")");
+    }
+    const int* leading_perm = static_cast<const int*>(leading->Perm);
+    std::copy(leading_perm, leading_perm + lead, perm.begin());
+    leading_ordering = leading->ordering;
+    cholmod_free_factor(&leading, &c);
+    a.nrow = a.ncol = static_cast<size_t>(n);
+    a.nzmax = static_cast<size_t>(upper_col_ptr[static_cast<std::size_t>(n)]);
+  }
+  for (int k = lead; k < n; ++k) perm[static_cast<std::size_t>(k)] = k;
+  const int nmethods = c.nmethods, method = c.method[0].ordering, postorder = c.postorder;
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.postorder = 0;
+  cholmod_factor* analysed = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &c);
+  c.nmethods = nmethods;
+  c.method[0].ordering = method;
+  c.postorder = postorder;
+  if (analysed && !std::equal(perm.begin(), perm.end(), static_cast<const int*>(analysed->Perm))) {
+    cholmod_free_factor(&analysed, &c);
+    throw ConicSetupError("CHOLMOD did not keep the given ordering");
+  }
+  return analysed;
+}
 
 SparseCholesky::SparseCholesky(Ordering ordering) : impl_(std::make_unique<Impl>()) {
   impl_->ordering = ordering;
@@ -172,76 +203,9 @@ void SparseCholesky::analyze(int n, const int* col_ptr, const int* row_ind, int 
   impl_->trailing = trailing;
   ++num_analyses_;
   if (n == 0) return;  // no equality rows: nothing to factor
-  cholmod_sparse& a = impl_->matrix;
-  std::memset(&a, 0, sizeof a);
-  a.nrow = static_cast<size_t>(n);
-  a.ncol = static_cast<size_t>(n);
-  const int nnz = col_ptr[n];
-  auto& up = impl_->upper_col_ptr;
-  auto& ui = impl_->upper_row_ind;
-  auto& map = impl_->lower_to_upper;
-  up.assign(static_cast<std::size_t>(n) + 1, 0);
-  ui.resize(static_cast<std::size_t>(nnz));
-  map.resize(static_cast<std::size_t>(nnz));
-  impl_->upper_values.resize(static_cast<std::size_t>(nnz));
-  for (int p = 0; p < nnz; ++p) ++up[static_cast<std::size_t>(row_ind[p]) + 1];
-  for (int j = 0; j < n; ++j) up[j + 1] += up[j];
-  std::vector<int> next(up.begin(), up.end() - 1);
-  for (int j = 0; j < n; ++j) {
-    for (int p = col_ptr[j]; p < col_ptr[j + 1]; ++p) {
-      const int q = next[static_cast<std::size_t>(row_ind[p])]++;
-      ui[static_cast<std::size_t>(q)] = j;  // column j of the lower triangle is row j of the upper
-      map[static_cast<std::size_t>(p)] = q;
-    }
-  }
-  a.nzmax = static_cast<size_t>(nnz);
-  a.p = up.data();
-  a.i = ui.data();
-  a.x = nullptr;
-  a.stype = 1;  // upper triangle stored
-  a.itype = CHOLMOD_INT;
-  a.xtype = CHOLMOD_PATTERN;
-  a.dtype = CHOLMOD_DOUBLE;
-  a.sorted = 1;
-  a.packed = 1;
-  if (trailing == 0) {
-    impl_->factor = cholmod_analyze(&a, &c);
-  } else {
-    // Order the leading block by the chosen method (its upper triangle is the first `lead`
-    // columns of the upper triangle), then append the trailing rows and analyse the whole
-    // matrix with that permutation as given and no postorder, which would move them.
-    const int lead = n - trailing;
-    std::vector<int> perm(static_cast<std::size_t>(n));
-    if (lead > 0) {
-      a.nrow = a.ncol = static_cast<size_t>(lead);
-      a.nzmax = static_cast<size_t>(up[static_cast<std::size_t>(lead)]);
-      cholmod_factor* leading = cholmod_analyze(&a, &c);
-      if (!leading || c.status < CHOLMOD_OK) {
-        if (leading) cholmod_free_factor(&leading, &c);
-        throw ConicSetupError("CHOLMOD symbolic analysis failed (status " +
-                              std::to_string(c.status) + ")");
-      }
-      const int* leading_perm = static_cast<const int*>(leading->Perm);
-      std::copy(leading_perm, leading_perm + lead, perm.begin());
-      impl_->leading_ordering = leading->ordering;
-      cholmod_free_factor(&leading, &c);
-      a.nrow = a.ncol = static_cast<size_t>(n);
-      a.nzmax = static_cast<size_t>(nnz);
-    }
-    for (int k = lead; k < n; ++k) perm[static_cast<std::size_t>(k)] = k;
-    const int nmethods = c.nmethods, method = c.method[0].ordering, postorder = c.postorder;
-    c.nmethods = 1;
-    c.method[0].ordering = CHOLMOD_GIVEN;
-    c.postorder = 0;
-    impl_->factor = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &c);
-    c.nmethods = nmethods;
-    c.method[0].ordering = method;
-    c.postorder = postorder;
-    if (impl_->factor &&
-        !std::equal(perm.begin(), perm.end(), static_cast<const int*>(impl_->factor->Perm))) {
-      throw ConicSetupError("CHOLMOD did not keep the given ordering");
-    }
-  }
+  impl_->set_upper_pattern(n, col_ptr, row_ind);
+  impl_->factor = trailing == 0 ? cholmod_analyze(&impl_->matrix, &c)
+                                : impl_->analyze_keeping_trailing(n, trailing);
   if (!impl_->factor || c.status < CHOLMOD_OK) {
     throw ConicSetupError("CHOLMOD symbolic analysis failed (status " + std::to_string(c.status) +
                           ")");

@@ -16,8 +16,8 @@ namespace rbla::conic::detail {
 /// in use is not OpenBLAS, or for threads ≤ 0). CHOLMOD's solves call dtrsv/dgemv per supernode
 /// and small factorisations call the BLAS on blocks of a few dozen rows: with a second thread
 /// these spend much of their time in thread hand-over (sched_yield, futex), most of all on a
-/// shared machine (3-D façade settlement, 1920 blocks, machine loaded: 5.96 s of CPU time with
-/// 2 threads, 2.71 s with 1, and less wall time too). Large factors gain from threads.
+/// shared machine, where a second BLAS thread can double the CPU time for no less wall time.
+/// Large factors gain from threads. Set through openblas_set_num_threads (sparse_cholesky.cpp).
 class BlasThreads {
  public:
   explicit BlasThreads(int threads);

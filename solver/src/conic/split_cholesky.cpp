@@ -45,52 +45,73 @@ double SplitCholesky::separator_diagonal(const double* values, int j) const {
 bool SplitCholesky::analyze(int n, const int* col_ptr, const int* row_ind) {
   n_ = n;
   m_col_ptr_ = col_ptr;
-  if (n < 2) return false;
-  // Node separator of M's graph (METIS through CHOLMOD; the diagonal is ignored).
-  part_.assign(static_cast<std::size_t>(n), 2);
-  {
-    cholmod_common common;
-    cholmod_start(&common);
-    common.print = 0;
-    cholmod_sparse pattern{};
-    pattern.nrow = pattern.ncol = static_cast<size_t>(n);
-    pattern.nzmax = static_cast<size_t>(col_ptr[n]);
-    pattern.p = const_cast<int*>(col_ptr);
-    pattern.i = const_cast<int*>(row_ind);
-    pattern.stype = -1;  // lower triangle stored
-    pattern.itype = CHOLMOD_INT;
-    pattern.xtype = CHOLMOD_PATTERN;
-    pattern.dtype = CHOLMOD_DOUBLE;
-    pattern.sorted = 1;
-    pattern.packed = 1;
-    // METIS balances the two sides only loosely, and differently with and without CHOLMOD's
-    // compression of identical rows (façade, 8051 blocks: 32023 against 23665 rows compressed,
-    // 27839 against 27840 not; 1920 blocks: the other way round). Both are tried and the one
-    // with the smaller larger side, counting the separator twice (both domains factor it), is
-    // kept: the two threads wait for the slower domain.
-    long best_cost = -1;
-    for (const int compress : {0, 1}) {
-      std::vector<int> partition(static_cast<std::size_t>(n), 2);
-      const long separator =
-          cholmod_bisect(&pattern, nullptr, 0, compress, partition.data(), &common);
-      if (separator < 0 || common.status < CHOLMOD_OK) continue;
-      long side[3] = {0, 0, 0};
-      for (int p : partition) ++side[p];
-      const long cost = std::max(side[0], side[1]) + 2 * side[2];
-      if (best_cost >= 0 && cost >= best_cost) continue;
-      best_cost = cost;
-      for (int i = 0; i < n; ++i)
-        part_[static_cast<std::size_t>(i)] =
-            static_cast<unsigned char>(partition[static_cast<std::size_t>(i)]);
-    }
-    cholmod_finish(&common);
-    if (best_cost < 0) return false;
-  }
+  if (n < 2 || !bisect(n, col_ptr, row_ind)) return false;
   int count[3] = {0, 0, 0};
   for (unsigned char p : part_) ++count[p];
   if (std::min(count[0], count[1]) < n / 5 || count[2] > n / 4) return false;
+  const std::vector<int> local = number_rows(count);
+  const int s = static_cast<int>(separator_rows_.size());
+  std::vector<Column> columns[2];
+  if (!gather_domain_entries(n, col_ptr, row_ind, local, columns)) return false;
+  for (int d = 0; d < 2; ++d) build_domain(*domains_[d], columns[d], s);
+  separator_factor_.setZero(s, s);
+  separator_rhs_.setZero(s, 1);
+  // One after the other: METIS keeps its random state in a global (gk_randinit), so two
+  // concurrent orderings would race and differ from run to run.
+  for (auto& domain : domains_)
+    domain->factor.analyze(domain->interior + s, domain->col_ptr.data(), domain->row_ind.data(), s);
+  // The separator's dense work (two T Tᵀ, 2s³/3, and its Cholesky, s³/3) is on top of what one
+  // factor would do; where it would be half as much as the domains' own, one factor is
+  // cheaper (the dense work runs at BLAS-3 speed, several times the sparse factor's).
+  const double dense_flops = static_cast<double>(s) * s * s;
+  const double domain_flops =
+      domains_[0]->factor.factor_flops() + domains_[1]->factor.factor_flops();
+  return dense_flops <= 0.5 * domain_flops;
+}
 
-  // Local numbering: each domain's rows, then the separator's, ascending.
+// Node separator of M's graph (METIS through CHOLMOD; the diagonal is ignored) into part_.
+bool SplitCholesky::bisect(int n, const int* col_ptr, const int* row_ind) {
+  part_.assign(static_cast<std::size_t>(n), 2);
+  cholmod_common common;
+  cholmod_start(&common);
+  common.print = 0;
+  cholmod_sparse pattern{};
+  pattern.nrow = pattern.ncol = static_cast<size_t>(n);
+  pattern.nzmax = static_cast<size_t>(col_ptr[n]);
+  pattern.p = const_cast<int*>(col_ptr);
+  pattern.i = const_cast<int*>(row_ind);
+  pattern.stype = -1;  // lower triangle stored
+  pattern.itype = CHOLMOD_INT;
+  pattern.xtype = CHOLMOD_PATTERN;
+  pattern.dtype = CHOLMOD_DOUBLE;
+  pattern.sorted = 1;
+  pattern.packed = 1;
+  // METIS balances the two sides only loosely, and differently with and without CHOLMOD's
+  // compression of identical rows (which one is better varies from problem to problem). Both
+  // are tried and the one with the smaller larger side, counting the separator twice (both
+  // domains factor it), is kept: the two threads wait for the slower domain.
+  long best_cost = -1;
+  for (const int compress : {0, 1}) {
+    std::vector<int> partition(static_cast<std::size_t>(n), 2);
+    const long separator =
+        cholmod_bisect(&pattern, nullptr, 0, compress, partition.data(), &common);
+    if (separator < 0 || common.status < CHOLMOD_OK) continue;
+    long side[3] = {0, 0, 0};
+    for (int p : partition) ++side[p];
+    const long cost = std::max(side[0], side[1]) + 2 * side[2];
+    if (best_cost >= 0 && cost >= best_cost) continue;
+    best_cost = cost;
+    for (int i = 0; i < n; ++i)
+      part_[static_cast<std::size_t>(i)] =
+          static_cast<unsigned char>(partition[static_cast<std::size_t>(i)]);
+  }
+  cholmod_finish(&common);
+  return best_cost >= 0;
+}
+
+// Local numbering: each domain's rows, then the separator's, ascending. Creates the domains.
+std::vector<int> SplitCholesky::number_rows(const int count[3]) {
+  const int n = static_cast<int>(part_.size());
   std::vector<int> local(static_cast<std::size_t>(n));
   separator_rows_.clear();
   for (int d = 0; d < 2; ++d) {
@@ -107,20 +128,26 @@ bool SplitCholesky::analyze(int n, const int* col_ptr, const int* row_ind) {
       domains_[p]->rows.push_back(i);
     }
   }
-  const int s = static_cast<int>(separator_rows_.size());
-  for (auto& domain : domains_) {
+  for (auto& domain : domains_)
     domain->rows.insert(domain->rows.end(), separator_rows_.begin(), separator_rows_.end());
-  }
+  return local;
+}
 
-  // Each K_d's lower triangle: the entries of M inside domain d and between it and the
-  // separator, and all separator–separator entries (values from the shares).
-  const int nnz = col_ptr[n];
-  slot_of_position_.assign(static_cast<std::size_t>(nnz), -1);
+// Each K_d's lower triangle: the entries of M inside domain d and between it and the
+// separator, and all separator–separator entries (values from the shares, numbered as slots).
+// False when an entry couples the two domains (not a separator after all).
+bool SplitCholesky::gather_domain_entries(int n, const int* col_ptr, const int* row_ind,
+                                          const std::vector<int>& local,
+                                          std::vector<Column> (&columns)[2]) {
+  const int s = static_cast<int>(separator_rows_.size());
+  slot_of_position_.assign(static_cast<std::size_t>(col_ptr[n]), -1);
   position_of_slot_.clear();
   num_slots_ = 0;
-  std::vector<std::vector<std::pair<int, int>>> columns[2];  // per local column: (row, source)
   for (int d = 0; d < 2; ++d)
     columns[d].resize(static_cast<std::size_t>(domains_[d]->interior + s));
+  auto add = [&](int d, int lr, int lc, int source) {
+    columns[d][static_cast<std::size_t>(std::min(lr, lc))].emplace_back(std::max(lr, lc), source);
+  };
   for (int c = 0; c < n; ++c) {
     const unsigned char pc = part_[static_cast<std::size_t>(c)];
     for (int p = col_ptr[c]; p < col_ptr[c + 1]; ++p) {
@@ -132,62 +159,46 @@ bool SplitCholesky::analyze(int n, const int* col_ptr, const int* row_ind) {
         position_of_slot_.push_back(p);
         for (int d = 0; d < 2; ++d) {
           const int base = domains_[d]->interior;
-          const int lr = base + local[static_cast<std::size_t>(r)];
-          const int lc = base + local[static_cast<std::size_t>(c)];
-          columns[d][static_cast<std::size_t>(std::min(lr, lc))].emplace_back(std::max(lr, lc),
-                                                                             -1 - slot);
+          add(d, base + local[static_cast<std::size_t>(r)], base + local[static_cast<std::size_t>(c)],
+              -1 - slot);
         }
         continue;
       }
-      if (pr != 2 && pc != 2 && pr != pc) return false;  // not a separator after all
+      if (pr != 2 && pc != 2 && pr != pc) return false;
       const int d = pr != 2 ? pr : pc;
       const int base = domains_[d]->interior;
-      const int lr = local[static_cast<std::size_t>(r)] + (pr == 2 ? base : 0);
-      const int lc = local[static_cast<std::size_t>(c)] + (pc == 2 ? base : 0);
-      columns[d][static_cast<std::size_t>(std::min(lr, lc))].emplace_back(std::max(lr, lc), p);
+      add(d, local[static_cast<std::size_t>(r)] + (pr == 2 ? base : 0),
+          local[static_cast<std::size_t>(c)] + (pc == 2 ? base : 0), p);
     }
   }
-  for (int d = 0; d < 2; ++d) {
-    Domain& domain = *domains_[d];
-    auto& cols = columns[d];
-    domain.col_ptr.assign(cols.size() + 1, 0);
-    for (std::size_t j = 0; j < cols.size(); ++j) {
-      std::sort(cols[j].begin(), cols[j].end());
-      domain.col_ptr[j + 1] = domain.col_ptr[j] + static_cast<int>(cols[j].size());
-      if (cols[j].empty() || cols[j].front().first != static_cast<int>(j))
-        throw ConicSetupError("SplitCholesky: the normal matrix's pattern lacks a diagonal entry");
-    }
-    domain.row_ind.clear();
-    domain.source.clear();
-    domain.row_ind.reserve(static_cast<std::size_t>(domain.col_ptr.back()));
-    domain.source.reserve(static_cast<std::size_t>(domain.col_ptr.back()));
-    for (auto& col : cols) {
-      for (const auto& [row, source] : col) {
-        domain.row_ind.push_back(row);
-        domain.source.push_back(source);
-      }
-      std::vector<std::pair<int, int>>().swap(col);
-    }
-    domain.values.assign(domain.row_ind.size(), 0.0);
-    domain.trailing.setZero(s, s);
-    domain.flipped.setZero(s, s);
-    domain.work.setZero(domain.interior + s, 1);
-    domain.coupling.setZero(s, 1);
-  }
-  separator_factor_.setZero(s, s);
-  separator_rhs_.setZero(s, 1);
-  // One after the other: METIS keeps its random state in a global (gk_randinit), so two
-  // concurrent orderings would race and differ from run to run.
-  for (auto& domain : domains_)
-    domain->factor.analyze(domain->interior + s, domain->col_ptr.data(), domain->row_ind.data(), s);
-  // The separator's dense work (two T Tᵀ, 2s³/3, and its Cholesky, s³/3) is on top of what one
-  // factor would do; where it would be half as much as the domains' own, one factor is
-  // cheaper (the dense work runs at BLAS-3 speed, several times the sparse factor's).
-  const double dense_flops = static_cast<double>(s) * s * s;
-  const double domain_flops =
-      domains_[0]->factor.factor_flops() + domains_[1]->factor.factor_flops();
-  if (dense_flops > 0.5 * domain_flops) return false;
   return true;
+}
+
+// K_d's compressed columns from the gathered (row, source) entries, and its dense work space.
+void SplitCholesky::build_domain(Domain& domain, std::vector<Column>& cols, int s) {
+  domain.col_ptr.assign(cols.size() + 1, 0);
+  for (std::size_t j = 0; j < cols.size(); ++j) {
+    std::sort(cols[j].begin(), cols[j].end());
+    domain.col_ptr[j + 1] = domain.col_ptr[j] + static_cast<int>(cols[j].size());
+    if (cols[j].empty() || cols[j].front().first != static_cast<int>(j))
+      throw ConicSetupError("SplitCholesky: the normal matrix's pattern lacks a diagonal entry");
+  }
+  domain.row_ind.clear();
+  domain.source.clear();
+  domain.row_ind.reserve(static_cast<std::size_t>(domain.col_ptr.back()));
+  domain.source.reserve(static_cast<std::size_t>(domain.col_ptr.back()));
+  for (auto& col : cols) {
+    for (const auto& [row, source] : col) {
+      domain.row_ind.push_back(row);
+      domain.source.push_back(source);
+    }
+    Column().swap(col);
+  }
+  domain.values.assign(domain.row_ind.size(), 0.0);
+  domain.trailing.setZero(s, s);
+  domain.flipped.setZero(s, s);
+  domain.work.setZero(domain.interior + s, 1);
+  domain.coupling.setZero(s, 1);
 }
 
 bool SplitCholesky::factorize(const double* values, const double* share0, const double* share1,

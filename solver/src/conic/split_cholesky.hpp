@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fork_join.hpp"
@@ -74,6 +75,12 @@ class SplitCholesky {
 
  private:
   struct Domain;
+  using Column = std::vector<std::pair<int, int>>;  // (local row, source) of one local column
+  bool bisect(int n, const int* col_ptr, const int* row_ind);
+  std::vector<int> number_rows(const int count[3]);
+  bool gather_domain_entries(int n, const int* col_ptr, const int* row_ind,
+                             const std::vector<int>& local, std::vector<Column> (&columns)[2]);
+  void build_domain(Domain& domain, std::vector<Column>& cols, int s);
   double separator_diagonal(const double* values, int j) const;
   std::vector<unsigned char> part_;
   std::vector<int> separator_rows_;

@@ -1,6 +1,7 @@
 #include "io/result_writer.hpp"
 
 #include "io/detection_json.hpp"
+#include "io/sensitivities_json.hpp"
 #include "io/warning_summary.hpp"
 
 #include <algorithm>
@@ -85,7 +86,7 @@ json warning_summary_json(const std::vector<model::Warning>& warnings) {
 }
 
 json model_only_result(const model::Model& model, const model::StageTimings& timings, const std::string& source) {
-  json result{{"schema_version", "1.2.0"},
+  json result{{"schema_version", "1.3.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
               {"verdict", "Model read and checked; no analysis was run."},
@@ -329,7 +330,7 @@ void add_mechanism(const model::Model& model, const analysis::AnalysisResult& re
   out["cracked_interfaces"] = cracked;
 }
 
-/// The `work_balance` and `accuracy` sections of a collapse.
+/// The `work_balance`, `accuracy` and (when computed) `sensitivities` sections of a collapse.
 void add_collapse_checks(const model::Model& model, const analysis::AnalysisResult& result, json& out) {
   const double l = model.units.length_to_m;
   const double f = model.units.force_to_kN;
@@ -351,6 +352,7 @@ void add_collapse_checks(const model::Model& model, const analysis::AnalysisResu
         {"inscribed", non_negative(result.accuracy.pyramid_bracket->first / unit)},
         {"circumscribed", non_negative(result.accuracy.pyramid_bracket->second / unit)}};
   }
+  if (result.sensitivities) out["sensitivities"] = sensitivities_json(model, *result.sensitivities);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "model/model.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 #include <limits>
 #include <sstream>
@@ -80,6 +82,13 @@ std::size_t Model::num_contact_points() const {
 double Model::distance_tolerance() const {
   if (detection.distance_tolerance) return *detection.distance_tolerance;
   return detection.relative_tolerance.value_or(kModelRelativeTolerance) * std::max(bounding_box().diagonal(), 1e-300);
+}
+
+std::pair<Vec3, Vec3> Model::horizontal_axes() const {
+  const Vec3 up = -gravity.normalized();
+  const Vec3 seed = std::abs(up.x()) > 0.9 ? Vec3::UnitY() : Vec3::UnitX();
+  const Vec3 x = (seed - seed.dot(up) * up).normalized();
+  return {x, up.cross(x)};
 }
 
 }  // namespace rbla::model

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace rbla::model {
@@ -228,6 +229,10 @@ struct Model {
   std::size_t num_contact_points() const;
   /// The distance tolerance in metres actually used for geometry checks and detection.
   double distance_tolerance() const;
+  /// The axes angles in the horizontal plane are measured from and towards: x (y when gravity
+  /// is along x) projected on the plane normal to gravity, and up cross that, so that angles
+  /// turn counter-clockwise seen from above. With gravity along -z: +x and +y.
+  std::pair<Vec3, Vec3> horizontal_axes() const;
 };
 
 }  // namespace rbla::model

@@ -1,0 +1,134 @@
+#include "analysis/critical_friction.hpp"
+
+#include "model/errors.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace rbla::analysis {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// The schema's largest friction coefficient: the search does not scale beyond it.
+constexpr double kLargestFriction = 100.0;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+std::string text(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+void check_request(const model::Model& m) {
+  if (m.analysis.type != model::AnalysisType::LoadMultiplier) {
+    throw model::ModelError("/analysis/type", "the critical friction is searched for a load_multiplier analysis");
+  }
+  if (m.interfaces.empty()) throw model::ModelError("/interfaces", "the model has no interface: no friction to scale");
+}
+
+std::optional<double> uniform_friction(const model::Model& m) {
+  const double first = m.interfaces.front().friction;
+  for (const auto& contact : m.interfaces) {
+    if (contact.friction != first) return std::nullopt;
+  }
+  return first;
+}
+
+/// Passes when the structure stands (alpha = 0 admissible) and, with a target, carries it.
+ThresholdSample as_sample(const AnalysisResult& r, std::optional<double> target) {
+  ThresholdSample s;
+  const double goal = target.value_or(0.0);
+  switch (r.verdict) {
+    case Verdict::Collapse:
+      s.value = *r.load_multiplier - goal;
+      s.passes = *s.value >= 0.0;
+      break;
+    case Verdict::NoMechanism:
+      s.value = std::numeric_limits<double>::infinity();
+      s.passes = true;
+      break;
+    case Verdict::CannotStand: s.passes = false; break;
+    case Verdict::SolverFailure:
+    case Verdict::TimeLimit:
+    case Verdict::IterationLimit:
+    case Verdict::Cancelled:
+      s.usable = false;
+      s.why_unusable = r.verdict_text;
+      break;
+  }
+  return s;
+}
+
+std::string asked(std::optional<double> target) {
+  return target ? "to carry alpha = " + text(*target) : std::string("to stand under its own weight");
+}
+
+void conclude(CriticalFriction& c, const Threshold& t, bool associative) {
+  c.outcome = t.outcome;
+  c.stop = t.stop;
+  c.factor_lower = t.lower;
+  c.factor_upper = t.upper;
+  c.certified = t.converged && associative;
+  const std::string friction = c.uniform_friction && t.upper ? " (mu = " + text(*c.uniform_friction * *t.upper) + ")" : "";
+  switch (t.outcome) {
+    case ThresholdOutcome::Bracketed:
+      c.verdict_text = "The structure needs the friction coefficients times " + text(*t.upper) + friction + " " +
+                       asked(c.target_alpha) + (c.certified ? "; certified" : "; not certified") + ": " + t.stop + ".";
+      break;
+    case ThresholdOutcome::PassesAtMinimum:
+      c.verdict_text = "The structure manages " + asked(c.target_alpha) + " even with the friction coefficients times " +
+                       text(*t.upper) + friction + ", the smallest factor tried: it hardly relies on friction for it.";
+      break;
+    case ThresholdOutcome::FailsAtMaximum:
+      c.verdict_text = "No friction up to mu = " + text(kLargestFriction) + " is enough " + asked(c.target_alpha) +
+                       ": overturning or the geometry governs (" + t.stop + ").";
+      break;
+    case ThresholdOutcome::Failed:
+      c.verdict_text = "The search stopped: " + t.stop;
+      break;
+  }
+}
+
+}  // namespace
+
+CriticalFriction find_critical_friction(const model::Model& model, std::optional<double> target_alpha,
+                                        const AnalysisOptions& options, ThresholdSettings settings) {
+  check_request(model);
+  const auto start = Clock::now();
+  CriticalFriction c;
+  c.target_alpha = target_alpha;
+  c.uniform_friction = uniform_friction(model);
+  double largest = 0.0;
+  for (const auto& contact : model.interfaces) largest = std::max(largest, contact.friction);
+  settings.max_x = std::min(settings.max_x, kLargestFriction / largest);
+
+  double best_passing = std::numeric_limits<double>::infinity();
+  auto evaluate = [&](double factor) {
+    const auto evaluation_start = Clock::now();
+    model::Model scaled = model;
+    for (auto& contact : scaled.interfaces) contact.friction *= factor;
+    scaled.analysis.check_dead_load = true;  // standing is what every test asks first
+    AnalysisResult result = analyse(scaled, options);
+    const ThresholdSample sample = as_sample(result, target_alpha);
+    c.evaluations.push_back({factor, result.verdict, result.load_multiplier, sample.passes, seconds_since(evaluation_start)});
+    if ((sample.passes && factor < best_passing) || c.evaluations.size() == 1 ||
+        (!std::isfinite(best_passing) && !sample.passes)) {
+      if (sample.passes) best_passing = factor;
+      c.model_at_critical = std::move(scaled);
+      c.at_critical = std::move(result);
+    }
+    return sample;
+  };
+  const Threshold t = find_threshold(evaluate, settings);
+  conclude(c, t, model.analysis.friction_model == model::FrictionModel::Associative);
+  c.seconds = seconds_since(start);
+  return c;
+}
+
+}  // namespace rbla::analysis

@@ -1,0 +1,118 @@
+#include "analysis/threshold_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace rbla::analysis {
+namespace {
+
+std::string text(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+/// The bracket's two ends with the values the chord uses (Illinois-scaled).
+struct Bracket {
+  double lo = 0.0, hi = 0.0;
+  std::optional<double> g_lo, g_hi;
+  int kept_lo = 0, kept_hi = 0;  ///< how many steps in a row each end stayed
+};
+
+/// The chord's zero, kept at least `step` inside the bracket: the end the chord converges to is
+/// then crossed once the root is that close, which closes the bracket (as Dekker's and Brent's
+/// methods take at least a tolerance-sized step).
+double next_x(const Bracket& b, double step) {
+  // Over a wide bracket, halve the ratio rather than the difference.
+  const double middle = b.hi > 4.0 * b.lo ? std::sqrt(b.lo * b.hi) : 0.5 * (b.lo + b.hi);
+  if (!b.g_lo || !b.g_hi || !std::isfinite(*b.g_lo) || !std::isfinite(*b.g_hi) || *b.g_hi <= *b.g_lo) return middle;
+  const double x = b.lo + (b.hi - b.lo) * (-*b.g_lo) / (*b.g_hi - *b.g_lo);
+  if (!std::isfinite(x) || b.hi - b.lo <= 2.0 * step) return middle;
+  return std::clamp(x, b.lo + step, b.hi - step);
+}
+
+void update(Bracket& b, const ThresholdSample& s) {
+  if (s.passes) {
+    b.hi = s.x;
+    b.g_hi = s.value;
+    b.kept_hi = 0;
+    if (++b.kept_lo >= 2 && b.g_lo) *b.g_lo *= 0.5;
+  } else {
+    b.lo = s.x;
+    b.g_lo = s.value;
+    b.kept_lo = 0;
+    if (++b.kept_hi >= 2 && b.g_hi) *b.g_hi *= 0.5;
+  }
+}
+
+}  // namespace
+
+Threshold find_threshold(const std::function<ThresholdSample(double x)>& evaluate, const ThresholdSettings& settings) {
+  Threshold out;
+  auto take = [&](double x) {
+    ThresholdSample s = evaluate(x);
+    s.x = x;
+    out.samples.push_back(s);
+    if (!s.usable) {
+      out.outcome = ThresholdOutcome::Failed;
+      out.stop = s.why_unusable;
+      return false;
+    }
+    if (s.passes && (!out.upper || x < *out.upper)) out.upper = x;
+    if (!s.passes && (!out.lower || x > *out.lower)) out.lower = x;
+    return true;
+  };
+  auto out_of_samples = [&]() { return static_cast<int>(out.samples.size()) >= settings.max_samples; };
+
+  // Bracketing. The range's far end first: a test that passes (or fails) everywhere is common
+  // (a wall of level courses stands with any friction) and is settled in two evaluations. Then
+  // halve from a passing start, double from a failing one.
+  double x = settings.start;
+  if (!take(x)) return out;
+  const bool first_passes = out.samples.back().passes;
+  const double far = first_passes ? settings.min_x : settings.max_x;
+  if (far != x && !take(far)) return out;
+  if (out.samples.back().passes == first_passes) {
+    out.outcome = first_passes ? ThresholdOutcome::PassesAtMinimum : ThresholdOutcome::FailsAtMaximum;
+    out.stop = first_passes ? "passes at every value tried, down to " + text(far)
+                            : "fails at every value tried, up to " + text(far);
+    return out;
+  }
+  for (;;) {
+    const double next = first_passes ? 0.5 * x : 2.0 * x;
+    if ((first_passes ? next <= settings.min_x : next >= settings.max_x) || out_of_samples()) break;
+    x = next;
+    if (!take(x)) return out;
+    if (out.samples.back().passes != first_passes) break;
+  }
+  if (!out.lower || !out.upper) {
+    out.outcome = ThresholdOutcome::Failed;
+    out.stop = "no bracket within " + std::to_string(settings.max_samples) + " evaluations";
+    return out;
+  }
+
+  Bracket b;
+  b.lo = *out.lower;
+  b.hi = *out.upper;
+  for (const ThresholdSample& s : out.samples) {
+    if (s.x == b.lo) b.g_lo = s.value;
+    if (s.x == b.hi) b.g_hi = s.value;
+  }
+  out.outcome = ThresholdOutcome::Bracketed;
+  while (b.hi - b.lo > settings.tolerance * b.hi) {
+    if (out_of_samples()) {
+      out.stop = "stopped at " + std::to_string(settings.max_samples) + " evaluations with the bracket [" +
+                 text(b.lo) + ", " + text(b.hi) + "]";
+      return out;
+    }
+    if (!take(next_x(b, 0.4 * settings.tolerance * b.hi))) return out;
+    update(b, out.samples.back());
+  }
+  out.converged = true;
+  out.stop = "bracketed within the tolerance: [" + text(b.lo) + ", " + text(b.hi) + "]";
+  return out;
+}
+
+}  // namespace rbla::analysis

@@ -1,0 +1,139 @@
+#include "analysis/worst_direction.hpp"
+
+#include "model/errors.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <tuple>
+
+namespace rbla::analysis {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kPi = 3.14159265358979323846;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void check_request(const model::Model& m) {
+  if (m.analysis.type != model::AnalysisType::LoadMultiplier) {
+    throw model::ModelError("/analysis/type", "the worst direction is searched for a load_multiplier analysis");
+  }
+  if (!m.live_loads.empty()) {
+    throw model::ModelError("/live_loads", "the worst direction turns the seismic load only; live point loads "
+                                           "would be scaled by alpha without turning: remove them for this search");
+  }
+}
+
+/// The supporting line the mechanism gives (associative friction): alpha_u(t) = D / (F . d(t)).
+void add_mechanism_bound(const model::Model& m, const AnalysisResult& r, const WorstDirection& w,
+                         RadialSample& sample) {
+  if (r.verdict != Verdict::Collapse || r.friction_model != model::FrictionModel::Associative) return;
+  Vec3 f = Vec3::Zero();
+  for (std::size_t b = 0; b < m.blocks.size() && b < r.mechanism.blocks.size(); ++b) {
+    f += m.blocks[b].weight() * r.mechanism.blocks[b].translation;
+  }
+  const double fx = f.dot(w.axis_x), fy = f.dot(w.axis_y);
+  const double absorbed = r.work.dissipation - r.work.dead_work;
+  if (std::hypot(fx, fy) <= 0.0 || absorbed < 0.0) return;
+  sample.bound_angle = std::atan2(fy, fx);
+  sample.bound_radius = absorbed / std::hypot(fx, fy);
+}
+
+RadialSample as_sample(const AnalysisResult& r) {
+  RadialSample sample;
+  switch (r.verdict) {
+    case Verdict::Collapse:
+      sample.radius = r.load_multiplier.value_or(std::numeric_limits<double>::quiet_NaN());
+      break;
+    case Verdict::NoMechanism: sample.radius = std::numeric_limits<double>::infinity(); break;
+    case Verdict::CannotStand:
+    case Verdict::SolverFailure:
+    case Verdict::TimeLimit:
+    case Verdict::IterationLimit:
+    case Verdict::Cancelled:
+      sample.usable = false;
+      sample.why_unusable = r.verdict_text;
+      break;
+  }
+  if (sample.usable && std::isnan(sample.radius)) {
+    sample.usable = false;
+    sample.why_unusable = "the analysis reported a collapse without a load multiplier";
+  }
+  return sample;
+}
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+void conclude(WorstDirection& w, const RadialMinimum& search, const RadialSearchSettings& settings) {
+  w.stop = search.stop;
+  if (search.failed) {
+    w.verdict = w.evaluations.back().verdict;
+    w.verdict_text = "The search stopped at " + number_text(w.evaluations.back().angle * 180.0 / kPi) +
+                     " degrees: " + search.stop;
+    return;
+  }
+  if (search.best < 0) {
+    w.verdict = Verdict::NoMechanism;
+    w.verdict_text = "No collapse along any horizontal direction tried (" + search.stop + ").";
+    return;
+  }
+  const RadialSample& best = search.samples[search.best];
+  w.verdict = Verdict::Collapse;
+  w.alpha_min = best.radius;
+  w.angle = best.angle;
+  w.lower_bound = search.lower_bound;
+  w.certified = search.converged && settings.convex;
+  w.verdict_text = "Weakest horizontal direction at " + number_text(best.angle * 180.0 / kPi) +
+                   " degrees: collapse at load multiplier alpha = " + number_text(best.radius) +
+                   (w.certified ? ", the global minimum to within " + number_text(settings.tolerance * 100.0) + " %"
+                                : std::string(", not certified as the global minimum (") + search.stop + ")") +
+                   ".";
+}
+
+}  // namespace
+
+WorstDirection find_worst_direction(const model::Model& model, const AnalysisOptions& options,
+                                    const RadialSearchSettings& settings) {
+  check_request(model);
+  const auto start = Clock::now();
+  WorstDirection w;
+  std::tie(w.axis_x, w.axis_y) = model.horizontal_axes();
+  RadialSearchSettings search_settings = settings;
+  search_settings.convex = model.analysis.friction_model == model::FrictionModel::Associative;
+
+  double best_radius = std::numeric_limits<double>::infinity();
+  auto evaluate = [&](double angle) {
+    const auto evaluation_start = Clock::now();
+    model::Model turned = model;
+    turned.analysis.seismic_direction = std::cos(angle) * w.axis_x + std::sin(angle) * w.axis_y;
+    // Whether alpha = 0 is admissible does not depend on the direction: checked once.
+    turned.analysis.check_dead_load = model.analysis.check_dead_load && w.evaluations.empty();
+    AnalysisResult result = analyse(turned, options);
+    RadialSample sample = as_sample(result);
+    add_mechanism_bound(turned, result, w, sample);
+    w.evaluations.push_back({angle, *turned.analysis.seismic_direction, result.verdict, result.load_multiplier,
+                             result.solver_info.iterations, seconds_since(evaluation_start)});
+    const bool keep = !sample.usable || (sample.radius < best_radius) || w.evaluations.size() == 1;
+    if (keep) {
+      if (sample.usable) best_radius = sample.radius;
+      w.model_at_minimum = std::move(turned);
+      w.at_minimum = std::move(result);
+    }
+    return sample;
+  };
+  const RadialMinimum search = minimise_radius(evaluate, search_settings);
+  conclude(w, search, search_settings);
+  w.seconds = seconds_since(start);
+  return w;
+}
+
+}  // namespace rbla::analysis

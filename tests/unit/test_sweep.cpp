@@ -1,0 +1,152 @@
+// Parameter studies (analysis/sweep.hpp, io/sweep_io.hpp): the points of grids and seeded random
+// samples, the model at a point, the axes as typed, and the Slurm job array run locally.
+#include "analysis/sweep.hpp"
+#include "io/load_model.hpp"
+#include "io/model_reader.hpp"
+#include "io/sweep_io.hpp"
+#include "model/errors.hpp"
+#include "support/cli_runner.hpp"
+#include "support/model_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+using rbla::analysis::SweepAxis;
+using rbla::analysis::SweepParameter;
+
+rbla::model::Model box_on_base(const std::string& analysis_type = "load_multiplier") {
+  using namespace rbla::testing;
+  json model = model_with(json::array({box_block("base", -1, -1, -1, 2, 2, 0, analysis_type == "settlement" ? "moving_support" : "fixed"),
+                                       box_block("B", 0, 0, 0, 1, 1, 2)}));
+  model["analysis"] = {{"type", analysis_type}};
+  if (analysis_type != "settlement") model["analysis"]["seismic"] = {{"direction", {1.0, 0.0, 0.0}}};
+  return rbla::io::load_model_text(model.dump()).model;
+}
+
+TEST(Sweep, GridIsEveryCombinationWithTheLastAxisFastest) {
+  const std::vector<SweepAxis> axes{{SweepParameter::Friction, 0.2, 0.6, 3}, {SweepParameter::SeismicAngle, 0, 90, 2}};
+  const auto points = rbla::analysis::grid_points(axes);
+  ASSERT_EQ(points.size(), 6u);
+  EXPECT_DOUBLE_EQ(points[0].values[0], 0.2);
+  EXPECT_DOUBLE_EQ(points[1].values[1], 90.0);
+  EXPECT_DOUBLE_EQ(points[2].values[0], 0.4);
+  EXPECT_DOUBLE_EQ(points[5].values[0], 0.6);
+  EXPECT_EQ(points[5].index, 5);
+}
+
+TEST(Sweep, RandomSamplesAreReproducibleAndInRange) {
+  const std::vector<SweepAxis> axes{{SweepParameter::Friction, 0.3, 0.7, 1}};
+  const auto a = rbla::analysis::random_points(axes, 1000, 42), b = rbla::analysis::random_points(axes, 1000, 42);
+  const auto c = rbla::analysis::random_points(axes, 1000, 43);
+  double mean = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].values, b[i].values);
+    EXPECT_GE(a[i].values[0], 0.3);
+    EXPECT_LT(a[i].values[0], 0.7);
+    mean += a[i].values[0] / a.size();
+  }
+  EXPECT_NE(a[0].values, c[0].values);
+  EXPECT_NEAR(mean, 0.5, 0.02);  // uniform: 0.5 +- 3 standard errors (0.115 / sqrt(1000) each)
+}
+
+TEST(Sweep, ModelAtAPointSetsFrictionDirectionsAndWeights) {
+  const auto m = box_on_base();
+  const std::vector<SweepAxis> axes{{SweepParameter::Friction, 0, 0, 1}, {SweepParameter::SeismicAngle, 0, 0, 1},
+                                    {SweepParameter::UnitWeightFactor, 0, 0, 1}};
+  const auto at = rbla::analysis::model_at(m, axes, {0, {0.35, 90.0, 2.0}});
+  for (const auto& contact : at.interfaces) EXPECT_DOUBLE_EQ(contact.friction, 0.35);
+  EXPECT_NEAR(at.analysis.seismic_direction->y(), 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(at.blocks[1].unit_weight, 2.0 * m.blocks[1].unit_weight);
+  const auto settling = box_on_base("settlement");
+  const std::vector<SweepAxis> tilt{{SweepParameter::SettlementTilt, 0, 0, 1}, {SweepParameter::SettlementAzimuth, 0, 0, 1}};
+  const auto tilted = rbla::analysis::model_at(settling, tilt, {0, {30.0, 90.0}});
+  EXPECT_NEAR(tilted.analysis.settlement_direction.z(), -std::cos(30.0 * M_PI / 180.0), 1e-12);
+  EXPECT_NEAR(tilted.analysis.settlement_direction.y(), 0.5, 1e-12);
+}
+
+TEST(Sweep, ParametersThatDoNotApplyAreRefusedBeforeAnythingRuns) {
+  const auto m = box_on_base();
+  EXPECT_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::SettlementTilt, 0, 10, 3}}), rbla::model::ModelError);
+  EXPECT_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::Friction, 0.0, 0.5, 3}}), rbla::model::ModelError);
+  EXPECT_NO_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::Friction, 0.1, 0.5, 3}}));
+  EXPECT_THROW(rbla::io::parse_sweep_axis("friction=0.1:0.5", true, "--grid"), rbla::model::ModelError);
+  EXPECT_THROW(rbla::io::parse_sweep_axis("mu=0.1:0.5:3", true, "--grid"), rbla::model::ModelError);
+  EXPECT_THROW(rbla::io::parse_sweep_axis("friction=0.1:x:3", true, "--grid"), rbla::model::ModelError);
+  EXPECT_THROW(rbla::io::parse_sweep_axis("friction=0.1:0.5:2.5", true, "--grid"), rbla::model::ModelError);
+  const auto axis = rbla::io::parse_sweep_axis("seismic_angle=0:180:7", true, "--grid");
+  EXPECT_EQ(axis.parameter, SweepParameter::SeismicAngle);
+  EXPECT_EQ(axis.count, 7);
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(Sweep, TheSlurmArrayRunLocallyGivesTheSameSummaryAsOneProcess) {
+  const fs::path dir = fs::temp_directory_path() / ("rbla_sweep_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string model = std::string(RBLA_SOURCE_DIR) + "/samples/block.json";
+  const std::string axes = " --grid friction=0.2:0.8:4 --grid seismic_angle=0:90:2";
+  auto r = rbla::testing::run_rbla("sweep -q " + model + " --out " + (dir / "one").string() + axes);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = rbla::testing::run_rbla("sweep " + model + " --out " + (dir / "array").string() + axes + " --tasks 3 --slurm-script " +
+                              (dir / "job.sh").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string script = read(dir / "job.sh");
+  EXPECT_NE(script.find("#SBATCH --array=0-2"), std::string::npos) << script;
+  for (int task = 0; task < 3; ++task) {
+    const std::string run = "SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " bash " + (dir / "job.sh").string() + " 2>&1";
+    ASSERT_EQ(std::system(run.c_str()), 0) << run;
+  }
+  r = rbla::testing::run_rbla("sweep -q " + model + " --out " + (dir / "array").string() + axes + " --collect");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("8 points: 8 collapse"), std::string::npos) << r.output;
+  // Same points, statuses and values (the seconds differ).
+  auto without_seconds = [](const std::string& csv) {
+    std::string out, line;
+    std::istringstream in(csv);
+    while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
+    return out;
+  };
+  EXPECT_EQ(without_seconds(read(dir / "one" / "summary.csv")), without_seconds(read(dir / "array" / "summary.csv")));
+  // samples/block.json is 1 x 1 x 2: along x and along y alpha = min(mu, b/h) = min(mu, 0.5).
+  std::istringstream rows(read(dir / "one" / "summary.csv"));
+  std::string row;
+  std::getline(rows, row);
+  EXPECT_EQ(row, "index,friction,seismic_angle,status,load_multiplier,seconds");
+  int checked = 0;
+  while (std::getline(rows, row)) {
+    std::vector<std::string> cells;
+    std::istringstream in(row);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 6u) << row;
+    EXPECT_NEAR(std::stod(cells[4]), std::min(std::stod(cells[1]), 0.5), 1e-6) << row;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 8);
+  EXPECT_TRUE(rbla::io::validate_result_text(read(dir / "array" / "point_000005.json")).empty());
+  fs::remove_all(dir);
+}
+
+TEST(Sweep, CollectListsMissingPointsAndFails) {
+  const fs::path dir = fs::temp_directory_path() / ("rbla_sweep_missing_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string model = std::string(RBLA_SOURCE_DIR) + "/samples/block.json";
+  const auto r = rbla::testing::run_rbla("sweep -q " + model + " --out " + dir.string() + " --grid friction=0.2:0.8:3 --collect");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("3 missing"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
+}  // namespace

@@ -1,0 +1,88 @@
+// The critical friction (analysis/critical_friction.hpp) against closed forms: a block on an
+// inclined plane stands iff mu >= tan(beta); a block of half-width b/2 and centroid height h/2
+// on a flat base carries alpha = min(mu, b/h), so it reaches a target alpha_t < b/h at mu =
+// alpha_t and no friction makes it reach alpha_t > b/h.
+#include "analysis/critical_friction.hpp"
+#include "validation_helpers.hpp"
+
+#include <cmath>
+
+namespace rbla::validation {
+namespace {
+
+using rbla::analysis::ThresholdOutcome;
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// A squat block (1 x 1 x 0.2) on a fixed base, both tilted by `beta` about the y axis: the bed
+/// joint slopes at beta, and the centroid stays well inside the contact (tipping would need
+/// tan(beta) > 5).
+json inclined_block(double beta, double mu) {
+  json blocks = json::array({box_block("base", -1.0, -0.5, -0.3, 1.0, 1.5, 0.0, "fixed"),
+                             box_block("block", -0.5, 0.0, 0.0, 0.5, 1.0, 0.2)});
+  for (json& block : blocks) {
+    for (json& v : block["vertices"]) {
+      const double x = v[0], z = v[2];
+      v[0] = std::cos(beta) * x + std::sin(beta) * z;
+      v[2] = -std::sin(beta) * x + std::cos(beta) * z;
+    }
+  }
+  Case c;
+  c.mu = mu;
+  return finish(blocks, c);
+}
+
+rbla::analysis::CriticalFriction search(const json& model, std::optional<double> target, double tolerance) {
+  const auto loaded = rbla::io::load_model_text(model.dump());
+  rbla::analysis::ThresholdSettings settings;
+  settings.tolerance = tolerance;
+  return rbla::analysis::find_critical_friction(loaded.model, target, {}, settings);
+}
+
+TEST(CriticalFriction, ABlockOnAnInclinedPlaneNeedsTanBetaToStand) {
+  for (double degrees : {10.0, 20.0, 35.0}) {
+    const double beta = degrees * kPi / 180.0;
+    const auto c = search(inclined_block(beta, 0.6), std::nullopt, 1e-6);
+    ASSERT_EQ(c.outcome, ThresholdOutcome::Bracketed) << c.verdict_text;
+    EXPECT_TRUE(c.certified) << c.stop;
+    ASSERT_TRUE(c.uniform_friction);
+    const double mu_lower = *c.uniform_friction * *c.factor_lower, mu_upper = *c.uniform_friction * *c.factor_upper;
+    EXPECT_LE(mu_lower, std::tan(beta) * (1.0 + 1e-7)) << degrees;
+    EXPECT_GE(mu_upper, std::tan(beta) * (1.0 - 1e-7)) << degrees;
+    EXPECT_LT(relative_error(mu_upper, std::tan(beta)), 2e-6) << degrees;
+    // The analysis kept is the one at the critical factor: the block stands there.
+    EXPECT_NE(c.at_critical.verdict, Verdict::CannotStand);
+  }
+}
+
+TEST(CriticalFriction, ATargetAlphaBelowTheTippingLimitNeedsMuEqualToIt) {
+  Case s;
+  s.mu = 0.6;
+  const json model = single_block(1.0, 2.0, s);  // alpha = min(mu, 0.5)
+  const auto c = search(model, 0.3, 1e-6);
+  ASSERT_EQ(c.outcome, ThresholdOutcome::Bracketed) << c.verdict_text;
+  EXPECT_TRUE(c.certified);
+  EXPECT_LT(relative_error(*c.uniform_friction * *c.factor_upper, 0.3), 2e-6);
+  EXPECT_NE(c.verdict_text.find("to carry alpha = 0.3"), std::string::npos) << c.verdict_text;
+}
+
+TEST(CriticalFriction, NoFrictionReachesATargetAboveTheTippingLimit) {
+  Case s;
+  s.mu = 0.6;
+  const auto c = search(single_block(1.0, 2.0, s), 0.6, 1e-3);
+  EXPECT_EQ(c.outcome, ThresholdOutcome::FailsAtMaximum) << c.verdict_text;
+  EXPECT_FALSE(c.factor_upper.has_value());
+  // The largest factor tried is the one that takes mu to the schema's limit of 100.
+  EXPECT_NEAR(*c.uniform_friction * *c.factor_lower, 100.0, 1e-9);
+  EXPECT_NE(c.verdict_text.find("No friction up to mu = 100"), std::string::npos) << c.verdict_text;
+}
+
+TEST(CriticalFriction, AFlatStackStandsWithAnyFriction) {
+  Case s;
+  s.mu = 0.6;
+  const auto c = search(column(3, 1.0, 2.0, s), std::nullopt, 1e-3);
+  EXPECT_EQ(c.outcome, ThresholdOutcome::PassesAtMinimum) << c.verdict_text;
+}
+
+}  // namespace
+}  // namespace rbla::validation
