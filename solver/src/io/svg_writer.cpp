@@ -729,63 +729,40 @@ void append_non_associative_panel(std::string& out, const AnalysisResult& result
   out += polyline + "\"/>\n" + markers + "</g>\n";
 }
 
-void append_interior_point_panel(std::string& out, const AnalysisResult& result, const PlotArea& area) {
-  append_text(out, area.left, area.top - 12, "Interior-point iterations (last conic solve)",
-              "font-size=\"14\" font-weight=\"bold\"");
-  append_frame(out, area);
-  const auto& history = result.interior_point_history;
-  if (history.empty()) {
-    append_note(out, area, "no interior-point iterations recorded");
-    return;
-  }
+/// One curve of the interior-point panel: a column of the iteration log.
+struct IterationSeries {
+  const char* name;
+  const char* colour;
+  double conic::IterationRow::*field;
+};
+const IterationSeries kIterationSeries[3] = {{"relative gap", "#1f77b4", &conic::IterationRow::gap_rel},
+                                             {"primal residual", "#d62728", &conic::IterationRow::res_primal},
+                                             {"dual residual", "#2ca02c", &conic::IterationRow::res_dual}};
+
+/// log10 of a value, with what cannot be drawn on a log axis (<= 1e-16, including 0) at the
+/// floor; false for NaN or +inf, which are left out.
+bool log_value(double v, double& out_log) {
   constexpr double kFloor = 1e-16;
-  struct Series {
-    const char* name;
-    const char* colour;
-    double conic::IterationRow::*field;
-  };
-  const Series series[3] = {{"relative gap", "#1f77b4", &conic::IterationRow::gap_rel},
-                            {"primal residual", "#d62728", &conic::IterationRow::res_primal},
-                            {"dual residual", "#2ca02c", &conic::IterationRow::res_dual}};
-  // log10 of a value, with what cannot be drawn on a log axis (<= 1e-16, including 0) at the
-  // floor and NaN or +inf left out.
-  auto log_value = [&](double v, double& out_log) {
-    if (std::isnan(v) || v == std::numeric_limits<double>::infinity()) return false;
-    out_log = std::log10(std::max(v, kFloor));
-    return true;
-  };
-  Range xs{static_cast<double>(history.front().iteration), static_cast<double>(history.front().iteration)};
-  double log_lo = std::numeric_limits<double>::infinity(), log_hi = -log_lo;
-  for (const conic::IterationRow& row : history) {
-    xs.lo = std::min(xs.lo, static_cast<double>(row.iteration));
-    xs.hi = std::max(xs.hi, static_cast<double>(row.iteration));
-    for (const Series& s : series) {
-      double l;
-      if (log_value(row.*(s.field), l)) {
-        log_lo = std::min(log_lo, l);
-        log_hi = std::max(log_hi, l);
-      }
-    }
-  }
-  if (!(log_lo <= log_hi)) {
-    append_note(out, area, "no finite values to plot");
-    return;
-  }
+  if (std::isnan(v) || v == std::numeric_limits<double>::infinity()) return false;
+  out_log = std::log10(std::max(v, kFloor));
+  return true;
+}
+
+/// Decades from below the lowest to above the highest log value, at most about 8 gridlines:
+/// the range of the log axis and the step between its labelled decades.
+Range decade_range(double log_lo, double log_hi, int& decade_step) {
   int decade_lo = static_cast<int>(std::floor(log_lo + 1e-9));
   int decade_hi = static_cast<int>(std::ceil(log_hi - 1e-9));
   if (decade_hi <= decade_lo) decade_hi = decade_lo + 1;
-  const int decade_step = std::max(1, (decade_hi - decade_lo + 7) / 8);
+  decade_step = std::max(1, (decade_hi - decade_lo + 7) / 8);
   decade_lo = static_cast<int>(std::floor(static_cast<double>(decade_lo) / decade_step)) * decade_step;
   decade_hi = static_cast<int>(std::ceil(static_cast<double>(decade_hi) / decade_step)) * decade_step;
-  Range ys{static_cast<double>(decade_lo), static_cast<double>(decade_hi)};
-  for (int d = decade_lo; d <= decade_hi; d += decade_step) {
-    append_horizontal_grid(out, area, ys.map(d, area.bottom, area.top), power_of_ten_label(d));
-  }
-  const std::vector<double> x_ticks = nice_ticks(xs, std::min(8, std::max(1, static_cast<int>(history.size()) - 1)));
-  append_x_ticks(out, area, xs, x_ticks);
-  append_axis_labels(out, area, "interior-point iteration", "relative gap, residuals (log scale)");
+  return Range{static_cast<double>(decade_lo), static_cast<double>(decade_hi)};
+}
 
-  for (const Series& s : series) {
+void append_iteration_curves(std::string& out, const std::vector<conic::IterationRow>& history, const PlotArea& area,
+                             const Range& xs, const Range& ys) {
+  for (const IterationSeries& s : kIterationSeries) {
     std::string points;
     for (const conic::IterationRow& row : history) {
       double l;
@@ -797,18 +774,59 @@ void append_interior_point_panel(std::string& out, const AnalysisResult& result,
     out += "<polyline fill=\"none\" stroke=\"" + std::string(s.colour) + "\" stroke-width=\"1.8\" points=\"" + points +
            "\"><title>" + s.name + "</title></polyline>\n";
   }
-  // Legend in the top right corner, where residuals have usually fallen away from.
+}
+
+/// Legend in the top right corner, where residuals have usually fallen away from.
+void append_iteration_legend(std::string& out, const PlotArea& area) {
   out += "<g font-size=\"12\">\n";
   out += "<rect x=\"" + coordinate(area.right - 150) + "\" y=\"" + coordinate(area.top + 6) +
          "\" width=\"144\" height=\"62\" fill=\"#ffffff\" fill-opacity=\"0.85\" stroke=\"#cccccc\"/>\n";
   for (int i = 0; i < 3; ++i) {
     const double y = area.top + 22 + 18 * i;
     out += "<line x1=\"" + coordinate(area.right - 142) + "\" y1=\"" + coordinate(y - 4) + "\" x2=\"" +
-           coordinate(area.right - 120) + "\" y2=\"" + coordinate(y - 4) + "\" stroke=\"" + series[i].colour +
+           coordinate(area.right - 120) + "\" y2=\"" + coordinate(y - 4) + "\" stroke=\"" + kIterationSeries[i].colour +
            "\" stroke-width=\"2\"/>\n";
-    append_text(out, area.right - 114, y, series[i].name, "");
+    append_text(out, area.right - 114, y, kIterationSeries[i].name, "");
   }
   out += "</g>\n";
+}
+
+void append_interior_point_panel(std::string& out, const AnalysisResult& result, const PlotArea& area) {
+  append_text(out, area.left, area.top - 12, "Interior-point iterations (last conic solve)",
+              "font-size=\"14\" font-weight=\"bold\"");
+  append_frame(out, area);
+  const auto& history = result.interior_point_history;
+  if (history.empty()) {
+    append_note(out, area, "no interior-point iterations recorded");
+    return;
+  }
+  Range xs{static_cast<double>(history.front().iteration), static_cast<double>(history.front().iteration)};
+  double log_lo = std::numeric_limits<double>::infinity(), log_hi = -log_lo;
+  for (const conic::IterationRow& row : history) {
+    xs.lo = std::min(xs.lo, static_cast<double>(row.iteration));
+    xs.hi = std::max(xs.hi, static_cast<double>(row.iteration));
+    for (const IterationSeries& s : kIterationSeries) {
+      double l;
+      if (log_value(row.*(s.field), l)) {
+        log_lo = std::min(log_lo, l);
+        log_hi = std::max(log_hi, l);
+      }
+    }
+  }
+  if (!(log_lo <= log_hi)) {
+    append_note(out, area, "no finite values to plot");
+    return;
+  }
+  int decade_step = 1;
+  const Range ys = decade_range(log_lo, log_hi, decade_step);
+  for (int d = static_cast<int>(ys.lo); d <= static_cast<int>(ys.hi); d += decade_step) {
+    append_horizontal_grid(out, area, ys.map(d, area.bottom, area.top), power_of_ten_label(d));
+  }
+  const std::vector<double> x_ticks = nice_ticks(xs, std::min(8, std::max(1, static_cast<int>(history.size()) - 1)));
+  append_x_ticks(out, area, xs, x_ticks);
+  append_axis_labels(out, area, "interior-point iteration", "relative gap, residuals (log scale)");
+  append_iteration_curves(out, history, area, xs, ys);
+  append_iteration_legend(out, area);
 }
 
 }  // namespace
