@@ -34,6 +34,11 @@ import time
 
 import imperfections
 
+# One polyhedron volume and centroid for all the Python code: the CAD core's (plugin/rbla_cad,
+# standard library only), which tests/plugin/test_geometry_agreement.py holds equal to the solver's.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "plugin"))
+from rbla_cad.geometry import cross as _cross, dot as _dot, sub as _sub, volume_centroid  # noqa: E402
+
 SCHEMA_VERSION = "1.0.0"
 COORD_DECIMALS = 10    # vertex coordinates are rounded to 1e-10 length units
 DERIVED_DECIMALS = 12  # centroid and volume are rounded to 1e-12
@@ -47,46 +52,6 @@ SNAP = 1e-9            # breakpoints of a course closer than this (m) are merged
 def _r(x, nd=COORD_DECIMALS):
     """Round and drop the sign of zero, so -0.0 is never written."""
     return round(x, nd) + 0.0
-
-
-def _sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def _cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def volume_centroid(vertices, faces):
-    """Volume and centroid of a closed polyhedron by the divergence theorem.
-
-    Each face is fanned into triangles (v0, vk, vk+1) (exact for any planar face, convex or
-    not, since the triangle areas are signed); each triangle with a reference point o forms a
-    tetrahedron of signed volume (a-o).((b-o)x(c-o))/6 and centroid (o+a+b+c)/4.
-    The reference point is the first vertex, which keeps the sums well-conditioned far from
-    the origin. Positive volume means outward-oriented faces.
-    """
-    o = vertices[0]
-    vol6 = 0.0
-    cx = cy = cz = 0.0
-    for f in faces:
-        a = _sub(vertices[f[0]], o)
-        for k in range(1, len(f) - 1):
-            b = _sub(vertices[f[k]], o)
-            c = _sub(vertices[f[k + 1]], o)
-            v = _dot(a, _cross(b, c))
-            vol6 += v
-            cx += v * (a[0] + b[0] + c[0])
-            cy += v * (a[1] + b[1] + c[1])
-            cz += v * (a[2] + b[2] + c[2])
-    if vol6 == 0.0:
-        return 0.0, tuple(o)
-    # sum over tets of vol*(o+a+b+c)/4 relative to o: centroid offset = sum(v*(a+b+c))/(4*vol6)
-    return vol6 / 6.0, (o[0] + cx / (4.0 * vol6), o[1] + cy / (4.0 * vol6), o[2] + cz / (4.0 * vol6))
 
 
 def face_normal(vertices, face):

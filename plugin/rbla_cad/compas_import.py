@@ -36,7 +36,7 @@ loading), so their lowest blocks become fixed.
 Usage (from plugin/)::
 
     python3 -m rbla_cad.compas_import IN.json -o OUT.json [--support 0,1] [--ground auto|always|never]
-                                     [--interfaces] [--unit-weight 18] [--friction 0.6]
+                                     [--interfaces] [--unit-weight W] [--friction MU]
 
 Exit status: 0 converted, 1 the file is not a convertible assembly (message on stderr),
 2 a block failed its checks.
@@ -61,6 +61,13 @@ def detection_defaults():
     (degrees), from the bundled model schema: one place for those numbers."""
     props = load_schema("model")["properties"]["detection"]["properties"]
     return props["joint_tolerance"]["default"], props["angle_tolerance"]["default"]
+
+
+def model_defaults():
+    """rbla's default unit weight (kN/m3) and friction coefficient, from the bundled model
+    schema's `defaults`, so a converted model says what rbla would assume anyway."""
+    props = load_schema("model")["properties"]["defaults"]["properties"]
+    return props["unit_weight"]["default"], props["friction"]["default"]
 
 
 def _closure_problems(vertices, faces):
@@ -290,12 +297,15 @@ def _stored_interfaces(asm, centroids, info):
 
 
 def convert(doc, name="", supports=(), ground="auto", with_interfaces=False,
-            unit_weight=18.0, friction=0.6, fix_orientation=False, fix_lowest=False):
+            unit_weight=None, friction=None, fix_orientation=False, fix_lowest=False):
     """Return (model dict, info dict) for a parsed COMPAS document.
 
     ground: "auto" finds supports by contact with the ground plane (ground_contacts) when the file
     marks none, "always" also when it does, "never" not at all. fix_lowest=True is the old name
-    of ground="always"."""
+    of ground="always". unit_weight and friction: the schema's defaults when None."""
+    default_unit_weight, default_friction = model_defaults()
+    unit_weight = default_unit_weight if unit_weight is None else unit_weight
+    friction = default_friction if friction is None else friction
     if fix_lowest:
         ground = "always"
     _example_input_error(doc)
@@ -397,8 +407,11 @@ def main(argv=None):
                    help="write the interfaces stored on the graph edges (default: let rbla detect)")
     p.add_argument("--fix-orientation", action="store_true",
                    help="reverse the faces of blocks whose volume from the faces is negative")
-    p.add_argument("--unit-weight", type=float, default=18.0, help="kN/m3 (default 18)")
-    p.add_argument("--friction", type=float, default=0.6, help="mu (default 0.6)")
+    default_unit_weight, default_friction = model_defaults()
+    p.add_argument("--unit-weight", type=float, default=default_unit_weight,
+                   help="kN/m3 (default %g)" % default_unit_weight)
+    p.add_argument("--friction", type=float, default=default_friction,
+                   help="mu (default %g)" % default_friction)
     p.add_argument("--compact", action="store_true", help="write the JSON on one line")
     args = p.parse_args(argv)
 

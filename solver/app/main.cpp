@@ -230,7 +230,7 @@ int run_info(const CommonOptions& options) {
       << ", geometry " << seconds_text(loaded.timings.geometry_seconds) << ", detection "
       << seconds_text(loaded.timings.detect_seconds) << ")\n";
   if (!options.output_path.empty()) {
-    rbla::io::StageTimings timings = loaded.timings;
+    rbla::model::StageTimings timings = loaded.timings;
     timings.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const nlohmann::json result = rbla::io::model_only_result(m, timings, options.model_path);
     return write_output(options.output_path, result.dump(1) + "\n");
@@ -293,7 +293,7 @@ int run_solve(const CommonOptions& options) {
   }
   (stdout_taken ? std::cerr : std::cout) << shown(result.verdict_text) << "\n";
 
-  rbla::io::StageTimings timings = loaded.timings;
+  rbla::model::StageTimings timings = loaded.timings;
   const auto write_start = std::chrono::steady_clock::now();
   if (!options.svg_dir.empty()) {
     rbla::io::make_folder(options.svg_dir);
@@ -338,7 +338,7 @@ int run_worst_direction(const CommonOptions& options, const SearchOptions& searc
   progress(options, std::to_string(w.evaluations.size()) + " directions in " + seconds_text(w.seconds) + "; " + w.stop);
   (stdout_taken ? std::cerr : std::cout) << shown(w.verdict_text) << "\n";
 
-  rbla::io::StageTimings timings = loaded.timings;
+  rbla::model::StageTimings timings = loaded.timings;
   const auto write_start = std::chrono::steady_clock::now();
   if (!options.svg_dir.empty()) {
     rbla::io::make_folder(options.svg_dir);
@@ -378,7 +378,7 @@ int run_critical_friction(const CommonOptions& options, const SearchOptions& sea
   progress(options, std::to_string(c.evaluations.size()) + " factors in " + seconds_text(c.seconds));
   (stdout_taken ? std::cerr : std::cout) << shown(c.verdict_text) << "\n";
 
-  rbla::io::StageTimings timings = loaded.timings;
+  rbla::model::StageTimings timings = loaded.timings;
   const auto write_start = std::chrono::steady_clock::now();
   if (!options.svg_dir.empty()) {
     rbla::io::make_folder(options.svg_dir);
@@ -448,7 +448,7 @@ int solve_sweep_points(const CommonOptions& options, const SweepOptions& sweep, 
     const auto start = std::chrono::steady_clock::now();
     const rbla::model::Model at = rbla::analysis::model_at(m, axes, point);
     const rbla::analysis::AnalysisResult result = rbla::analysis::analyse(at, analysis_options);
-    rbla::io::StageTimings timings;
+    rbla::model::StageTimings timings;
     timings.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json json = rbla::io::analysis_result_json(at, result, timings, options.model_path);
     json["sweep_point"] = rbla::io::sweep_point_json(axes, point);

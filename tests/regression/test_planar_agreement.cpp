@@ -2,7 +2,7 @@
 // picks planar, the 3-D formulation gives the same verdict and the same value. The 3-D problem is
 // the independent reference here: it drops nothing, so a planar answer that differs from it was
 // a reduction the scene did not allow (a block overhanging its support along the axis, loaded in
-// the plane, once gave "collapse at 0.6" for a block that cannot stand).
+// the plane, gets "collapse at 0.6" from the planar LP although it cannot stand).
 //
 // Scenes: the bundled samples, the fast stiff cases (tests/stiff/stiff_cases.hpp: units from mm
 // to km, friction 0.01 to 10, weight contrasts, knife edges, stacks, edge of stability, cannot

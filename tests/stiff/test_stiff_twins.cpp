@@ -1,6 +1,6 @@
 // Well-conditioned twins: the same mechanics drawn at another scale or with every weight scaled
 // must give the same multiplier (the problem rbla solves is the same once non-dimensionalised,
-// METHOD.md "Units and scale"); and a large model under a tiny time limit ends with the
+// docs/method.md, "Scaling"); and a large model under a tiny time limit ends with the
 // time-limit verdict, not a number.
 #include "stiff_cases.hpp"
 #include "stiff_checks.hpp"

@@ -5,7 +5,6 @@
 #include "io/load_model.hpp"
 #include "io/result_writer.hpp"
 #include "io/schema_validation.hpp"
-#include "rbla/embedded_schemas.hpp"
 #include "support/model_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -302,20 +301,7 @@ TEST(WarpedFaces, HundredsOfWarpedFacesGiveOneWarning) {
   EXPECT_NE(m.warnings[0].message.find("within the joint tolerance"), std::string::npos);
 }
 
-TEST(DetectionSettings, TheSchemaDefaultsAreTheSolversDefaults) {
-  const json schema = json::parse(rbla::io::embedded::model_schema);
-  const json& p = schema["properties"]["detection"]["properties"];
-  const rbla::model::DetectionSettings d;
-  EXPECT_EQ(p["mode"]["default"], "auto");
-  EXPECT_EQ(d.mode, rbla::model::DetectionMode::Auto);
-  EXPECT_DOUBLE_EQ(p["joint_tolerance"]["default"].get<double>(), d.joint_tolerance);
-  EXPECT_DOUBLE_EQ(p["angle_tolerance"]["default"].get<double>(), d.angle_tolerance_degrees);
-  EXPECT_DOUBLE_EQ(p["min_area_fraction"]["default"].get<double>(), d.min_area_fraction);
-  EXPECT_EQ(p["max_near_misses"]["default"].get<int>(), d.max_near_misses);
-  EXPECT_FALSE(p["relative_tolerance"].contains("default"));  // absent: per-joint tolerances
-  EXPECT_FALSE(d.relative_tolerance.has_value());
-  EXPECT_FALSE(d.distance_tolerance.has_value());
-}
+// The detection defaults against the schema: tests/unit/test_schema_defaults.cpp.
 
 TEST(GivenInterfaces, TheNormalComesFromTheFaceTheContactLiesOn) {
   // B rests on the low step of an L-shaped A whose centroid (z = 1.65) is above B's (0.75): the

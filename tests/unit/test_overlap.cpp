@@ -1,5 +1,5 @@
-// Overlapping blocks (issue 19): two free blocks occupying the same space were accepted ("2
-// blocks move"). The common volume is checked against closed forms (boxes, prisms), in other
+// Overlapping blocks (issue 19): two free blocks occupying the same space must be refused, not
+// analysed as two blocks that move through each other. The common volume is checked against closed forms (boxes, prisms), in other
 // units, rotated, for non-convex blocks, and against what real CAD leaves at joints.
 #include "geometry/overlap.hpp"
 #include "io/load_model.hpp"
@@ -150,8 +150,8 @@ json stone(const std::string& id, double cx, int rings, unsigned seed) {
 }  // namespace
 
 // Two non-convex stones of 1520 triangles in one place need more tetrahedron pairs than the
-// exact volume may cost (1e6, about 3 s): the centroid of one inside the other still proves the
-// overlap (0.3 s here, against 7 s for the exact volume). Apart, nothing is reported.
+// exact volume may cost (kMaxTetClips, 1e6): the centroid of one inside the other still proves
+// the overlap, at a fraction of the exact volume's cost. Apart, nothing is reported.
 TEST(Overlap, ManyFacedNonConvexBlocksInOnePlaceAreRefusedWithoutTheirVolume) {
   json one_place = two_blocks(stone("S1", 0.0, 20, 1), stone("S2", 0.0, 20, 2));
   one_place["detection"] = {{"mode", "off"}};

@@ -242,10 +242,10 @@ TEST(Invariants, UnitInvariance) {
 
 // Pyramids: an inscribed pyramid is a subset of the cone (safe), a circumscribed one a superset,
 // so alpha_in <= alpha_exact <= alpha_out, for m = 4, 8, 16 with a 3-D load (30 deg to the wall).
-// And METHOD.md's oracle: for an in-plane load on a wall symmetric about its mid-plane an optimum
-// has no out-of-plane friction, and the axis-aligned 4-sided inscribed pyramid (|T1| + |T2| <=
-// mu N, whose edges lie on the in-plane axis) keeps the full in-plane capacity mu N: it gives the
-// exact cone's alpha.
+// And the exact check of docs/method.md ("An exact check for in-plane loads"): for an in-plane
+// load on a wall symmetric about its mid-plane an optimum has no out-of-plane friction, and the
+// axis-aligned 4-sided inscribed pyramid (|T1| + |T2| <= mu N, whose edges lie on the in-plane
+// axis) keeps the full in-plane capacity mu N: it gives the exact cone's alpha.
 TEST(Invariants, PyramidsBracketTheCone) {
   Case s;
   s.formulation = "3d";

@@ -1,4 +1,4 @@
-// Force scales of the conic problem's rows and variables (METHOD.md, "Units and scale").
+// Force scales of the conic problem's rows and variables (docs/method.md, "Scaling").
 //
 // The interior-point tolerances are relative to the largest data and solution entries, so a row
 // whose natural forces are far smaller than the largest ones is enforced only to a fraction of

@@ -282,22 +282,14 @@ PlanarFrame detect_planar(const model::Model& m) {
   return frame;
 }
 
-Formulation build_formulation(const model::Model& m, const FormulationOptions& options) {
-  Formulation f;
-  f.options = options;
-  const Scales scales = choose_scales(m);
-  f.length_scale = scales.length;
-  f.force_scale = scales.force;
-  const ForceScales loads = apply_force_scales(m, f);
-  f.settlement = m.analysis.type == model::AnalysisType::Settlement;
-  f.settlement_direction = m.analysis.settlement_direction;
-  f.rows_per_block = options.planar ? 3 : 6;
-  const Vec3 e = options.frame.normal;
+namespace {
 
-  // Equilibrium rows: every free block; under settlement, the moving supports settle together by
-  // the same amount along d, so they share one row: the sum of their loads along d equals R.
+/// Equilibrium rows: every free block; under settlement, the moving supports settle together by
+/// the same amount along d, so they share one row: the sum of their loads along d equals R.
+/// Fills f.block_row; returns the number of rows and sets `settlement_row` (-1 when none).
+int assign_equilibrium_rows(const model::Model& m, Formulation& f, int& settlement_row) {
   int num_rows = 0;
-  int settlement_row = -1;
+  settlement_row = -1;
   f.block_row.assign(m.blocks.size(), -1);
   for (std::size_t b = 0; b < m.blocks.size(); ++b) {
     const model::Block& block = m.blocks[b];
@@ -309,43 +301,54 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
       f.block_row[b] = settlement_row;
     }
   }
-  const int num_equilibrium_rows = num_rows;
+  return num_rows;
+}
 
-  // Contact points and their variables.
+/// The corners of one interface that make up each of its formulation points: every corner on its
+/// own in 3-D; in the planar reduction the two ends of the segment along the in-plane tangent
+/// t1 = e x n (and t2 = n x t1), which replace the interface's own tangents.
+std::vector<std::vector<int>> corner_groups(const model::ContactInterface& contact, const FormulationOptions& options,
+                                            double tol, Vec3& t1, Vec3& t2) {
+  std::vector<std::vector<int>> groups;
+  if (!options.planar) {
+    for (int k = 0; k < static_cast<int>(contact.polygon.size()); ++k) groups.push_back({k});
+    return groups;
+  }
+  // The interface is a rectangle extruded along e: its corners project onto two points of
+  // the segment along the in-plane tangent t = e x n. Corners strictly between carry nothing
+  // a corner could not (no-tension forces at interior points are convex combinations).
+  t1 = options.frame.normal.cross(contact.normal).normalized();
+  t2 = contact.normal.cross(t1);
+  double s_min = std::numeric_limits<double>::infinity(), s_max = -s_min;
+  for (const Vec3& p : contact.polygon) {
+    s_min = std::min(s_min, p.dot(t1));
+    s_max = std::max(s_max, p.dot(t1));
+  }
+  // Corners within the distance tolerance of an end belong to it; for a strip narrower
+  // than the tolerance (a 1e-4 m knife edge in a 1 m model) a quarter of its width decides,
+  // else both ends would merge into one point and the strip would lose its lever arm.
+  const double width = s_max - s_min;
+  const double group_tol = width > 0.0 ? std::min(tol, 0.25 * width) : tol;
+  std::vector<int> low, high;
+  for (int k = 0; k < static_cast<int>(contact.polygon.size()); ++k) {
+    const double s = contact.polygon[k].dot(t1);
+    if (s - s_min <= group_tol) low.push_back(k);
+    else if (s_max - s <= group_tol) high.push_back(k);
+  }
+  groups.push_back(low);
+  if (!high.empty()) groups.push_back(high);
+  return groups;
+}
+
+/// The contact points of every interface (into f.points) and the friction variables of each.
+std::vector<PointSpec> contact_points(const model::Model& m, const FormulationOptions& options,
+                                      const ForceScales& loads, Formulation& f) {
   const double tol = m.distance_tolerance();
   std::vector<PointSpec> specs;
   for (std::size_t i = 0; i < m.interfaces.size(); ++i) {
     const model::ContactInterface& contact = m.interfaces[i];
     Vec3 t1 = contact.tangent1, t2 = contact.tangent2;
-    std::vector<std::vector<int>> groups;
-    if (options.planar) {
-      // The interface is a rectangle extruded along e: its corners project onto two points of
-      // the segment along the in-plane tangent t = e x n. Corners strictly between carry nothing
-      // a corner could not (no-tension forces at interior points are convex combinations).
-      t1 = e.cross(contact.normal).normalized();
-      t2 = contact.normal.cross(t1);
-      double s_min = std::numeric_limits<double>::infinity(), s_max = -s_min;
-      for (const Vec3& p : contact.polygon) {
-        s_min = std::min(s_min, p.dot(t1));
-        s_max = std::max(s_max, p.dot(t1));
-      }
-      // Corners within the distance tolerance of an end belong to it; for a strip narrower
-      // than the tolerance (a 1e-4 m knife edge in a 1 m model) a quarter of its width decides,
-      // else both ends would merge into one point and the strip would lose its lever arm.
-      const double width = s_max - s_min;
-      const double group_tol = width > 0.0 ? std::min(tol, 0.25 * width) : tol;
-      std::vector<int> low, high;
-      for (int k = 0; k < static_cast<int>(contact.polygon.size()); ++k) {
-        const double s = contact.polygon[k].dot(t1);
-        if (s - s_min <= group_tol) low.push_back(k);
-        else if (s_max - s <= group_tol) high.push_back(k);
-      }
-      groups.push_back(low);
-      if (!high.empty()) groups.push_back(high);
-    } else {
-      for (int k = 0; k < static_cast<int>(contact.polygon.size()); ++k) groups.push_back({k});
-    }
-    for (auto& corners : groups) {
+    for (auto& corners : corner_groups(contact, options, tol, t1, t2)) {
       FormulationPoint point;
       point.interface_index = static_cast<int>(i);
       point.friction = contact.friction;
@@ -358,148 +361,189 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
       f.points.push_back(std::move(point));
     }
   }
+  return specs;
+}
 
-  // A live load on every block (seismic) would make the multiplier's column dense, and with it
-  // A W^2 A^T; keeping it out of the factor by a bordered solve loses accuracy near the optimum.
-  // Instead each free block gets its own copy alpha_b of the multiplier, in its own rows only,
-  // and equalities alpha_parent = alpha_child along a spanning tree of the contact graph tie the
-  // copies together: each such row couples two blocks that already touch, so the normal matrix
-  // keeps the block pattern of the structure. Variable 0 is the copy the objective sees.
-  std::vector<int> alpha_variable(m.blocks.size(), f.multiplier_variable);
-  std::vector<std::pair<int, int>> ties;  // (copy, copy) pairs of variables forced equal
-  int num_alpha = 1;
-  if (!f.settlement) {
-    int loaded_blocks = 0;
-    for (std::size_t b = 0; b < m.blocks.size(); ++b) {
-      if (m.blocks[b].is_support()) continue;
-      const bool seismic = m.analysis.seismic_direction && m.blocks[b].weight() > 0.0;
-      bool point_load = false;
-      for (const auto& load : m.live_loads) point_load |= load.block == static_cast<int>(b);
-      loaded_blocks += (seismic || point_load) ? 1 : 0;
-    }
-    if (loaded_blocks > 1) {
-      std::vector<std::vector<int>> neighbours(m.blocks.size());
-      for (const auto& contact : m.interfaces) {
-        if (m.blocks[contact.block_a].is_support() || m.blocks[contact.block_b].is_support()) continue;
-        neighbours[contact.block_a].push_back(contact.block_b);
-        neighbours[contact.block_b].push_back(contact.block_a);
-      }
-      std::vector<bool> seen(m.blocks.size(), false);
-      int root_variable = -1;
-      for (std::size_t start = 0; start < m.blocks.size(); ++start) {
-        if (m.blocks[start].is_support() || seen[start]) continue;
-        // Breadth-first over one connected group of free blocks; groups are tied to the first.
-        std::vector<int> queue{static_cast<int>(start)};
-        seen[start] = true;
-        alpha_variable[start] = root_variable < 0 ? f.multiplier_variable : num_alpha++;
-        if (root_variable < 0) root_variable = f.multiplier_variable;
-        else ties.emplace_back(root_variable, alpha_variable[start]);
-        for (std::size_t head = 0; head < queue.size(); ++head) {
-          const int block = queue[head];
-          for (int next : neighbours[block]) {
-            if (seen[next]) continue;
-            seen[next] = true;
-            alpha_variable[next] = num_alpha++;
-            ties.emplace_back(alpha_variable[block], alpha_variable[next]);
-            queue.push_back(next);
-          }
-        }
+/// The load multiplier's copies, one per free block, and the pairs of copies tied equal.
+struct MultiplierCopies {
+  std::vector<int> variable;                // per model block: the variable of its copy
+  std::vector<std::pair<int, int>> ties;    // (copy, copy) pairs of variables forced equal
+  int count = 1;                            // variables 0 .. count-1
+};
+
+/// Free blocks that a live load (seismic or a point load) acts on.
+int num_live_loaded_blocks(const model::Model& m) {
+  int loaded_blocks = 0;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    if (m.blocks[b].is_support()) continue;
+    const bool seismic = m.analysis.seismic_direction && m.blocks[b].weight() > 0.0;
+    bool point_load = false;
+    for (const auto& load : m.live_loads) point_load |= load.block == static_cast<int>(b);
+    loaded_blocks += (seismic || point_load) ? 1 : 0;
+  }
+  return loaded_blocks;
+}
+
+/// A live load on every block (seismic) would make the multiplier's column dense, and with it
+/// A W^2 A^T; keeping it out of the factor by a bordered solve loses accuracy near the optimum.
+/// Instead each free block gets its own copy alpha_b of the multiplier, in its own rows only,
+/// and equalities alpha_parent = alpha_child along a spanning tree of the contact graph tie the
+/// copies together: each such row couples two blocks that already touch, so the normal matrix
+/// keeps the block pattern of the structure. Variable 0 is the copy the objective sees.
+MultiplierCopies multiplier_copies(const model::Model& m, const Formulation& f) {
+  MultiplierCopies copies;
+  copies.variable.assign(m.blocks.size(), f.multiplier_variable);
+  if (f.settlement || num_live_loaded_blocks(m) <= 1) return copies;
+  std::vector<std::vector<int>> neighbours(m.blocks.size());
+  for (const auto& contact : m.interfaces) {
+    if (m.blocks[contact.block_a].is_support() || m.blocks[contact.block_b].is_support()) continue;
+    neighbours[contact.block_a].push_back(contact.block_b);
+    neighbours[contact.block_b].push_back(contact.block_a);
+  }
+  std::vector<bool> seen(m.blocks.size(), false);
+  int root_variable = -1;
+  for (std::size_t start = 0; start < m.blocks.size(); ++start) {
+    if (m.blocks[start].is_support() || seen[start]) continue;
+    // Breadth-first over one connected group of free blocks; groups are tied to the first.
+    std::vector<int> queue{static_cast<int>(start)};
+    seen[start] = true;
+    copies.variable[start] = root_variable < 0 ? f.multiplier_variable : copies.count++;
+    if (root_variable < 0) root_variable = f.multiplier_variable;
+    else copies.ties.emplace_back(root_variable, copies.variable[start]);
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const int block = queue[head];
+      for (int next : neighbours[block]) {
+        if (seen[next]) continue;
+        seen[next] = true;
+        copies.variable[next] = copies.count++;
+        copies.ties.emplace_back(copies.variable[block], copies.variable[next]);
+        queue.push_back(next);
       }
     }
   }
+  return copies;
+}
 
-  // Variable indices: the multiplier copies, then every orthant variable, then the cones (the
-  // conic layer's order). Radius rows follow the equilibrium rows, tie rows come last.
-  int num_orthant = num_alpha;
-  for (const PointSpec& spec : specs) num_orthant += static_cast<int>(spec.orthant.size());
-  int next_orthant = num_alpha;
-  int next_cone = num_orthant;
-  f.first_radius_row = num_equilibrium_rows;
-  std::vector<Eigen::Index> soc_dims;
-  std::vector<Eigen::Triplet<double>> triplets;
-  const double L = f.length_scale;
+/// The entries of A for the contact forces: each variable's unit force on the two blocks of its
+/// interface, as rows of force and moment about each block's centroid.
+class ContactColumns {
+ public:
+  ContactColumns(const model::Model& m, const FormulationOptions& options, Formulation& f,
+                 std::vector<Eigen::Triplet<double>>& triplets)
+      : m_(m), options_(options), f_(f), triplets_(triplets) {}
 
-  // `unit_force` is the force of one unit of the variable, in units of its point's scale; the
-  // rows are in units of the block's scale (the moving supports' row in the reference scale).
-  auto add_block_entries = [&](int block, double sign, int variable, const Vec3& unit_force, double point_scale,
-                               const Vec3& position) {
-    const int row = f.block_row[block];
+  /// Places every point's variables: the multiplier copies first, then every orthant variable,
+  /// then the cones (the conic layer's order); radius rows from `num_rows` on. Returns the number
+  /// of variables and fills the second-order cones' sizes.
+  int place(const std::vector<PointSpec>& specs, int num_alpha, int& num_rows, int& num_orthant,
+            std::vector<Eigen::Index>& soc_dims) {
+    num_orthant = num_alpha;
+    for (const PointSpec& spec : specs) num_orthant += static_cast<int>(spec.orthant.size());
+    int next_orthant = num_alpha;
+    int next_cone = num_orthant;
+    for (std::size_t p = 0; p < f_.points.size(); ++p) {
+      FormulationPoint& point = f_.points[p];
+      const PointSpec& spec = specs[p];
+      if (spec.has_radius_row) point.radius_row = num_rows++;
+      for (const VariableSpec& variable : spec.orthant) place_variable(point, variable, next_orthant++);
+      if (!spec.cone.empty()) {
+        for (const VariableSpec& variable : spec.cone) place_variable(point, variable, next_cone++);
+        soc_dims.push_back(static_cast<Eigen::Index>(spec.cone.size()));
+      }
+    }
+    return next_cone;
+  }
+
+ private:
+  void place_variable(FormulationPoint& point, const VariableSpec& variable, int index) {
+    const model::ContactInterface& contact = m_.interfaces[point.interface_index];
+    point.generators.push_back({index, variable.force});
+    add_block_entries(contact.block_b, +1.0, index, variable.force, point.force_scale, point.position);
+    add_block_entries(contact.block_a, -1.0, index, variable.force, point.force_scale, point.position);
+    if (variable.in_radius_row) triplets_.emplace_back(point.radius_row, index, 1.0);
+  }
+
+  /// `unit_force` is the force of one unit of the variable, in units of its point's scale; the
+  /// rows are in units of the block's scale (the moving supports' row in the reference scale).
+  void add_block_entries(int block, double sign, int variable, const Vec3& unit_force, double point_scale,
+                         const Vec3& position) {
+    const int row = f_.block_row[block];
     if (row < 0 || unit_force.isZero(0.0)) return;
-    const model::Block& target = m.blocks[block];
+    const model::Block& target = m_.blocks[block];
     if (target.role == model::BlockRole::MovingSupport) {
-      triplets.emplace_back(row, variable, sign * unit_force.dot(f.settlement_direction) * (point_scale / f.force_scale));
+      triplets_.emplace_back(row, variable,
+                             sign * unit_force.dot(f_.settlement_direction) * (point_scale / f_.force_scale));
       return;
     }
-    const Vec3 force = unit_force * (point_scale / f.block_scale[block]);
-    const Vec3 moment = (position - target.centroid).cross(force) / L;
-    if (options.planar) {
-      triplets.emplace_back(row, variable, sign * force.dot(options.frame.e1));
-      triplets.emplace_back(row + 1, variable, sign * force.dot(options.frame.e2));
-      triplets.emplace_back(row + 2, variable, sign * moment.dot(e));
+    const Vec3 force = unit_force * (point_scale / f_.block_scale[block]);
+    const Vec3 moment = (position - target.centroid).cross(force) / f_.length_scale;
+    if (options_.planar) {
+      triplets_.emplace_back(row, variable, sign * force.dot(options_.frame.e1));
+      triplets_.emplace_back(row + 1, variable, sign * force.dot(options_.frame.e2));
+      triplets_.emplace_back(row + 2, variable, sign * moment.dot(options_.frame.normal));
     } else {
       for (int k = 0; k < 3; ++k) {
-        if (force[k] != 0.0) triplets.emplace_back(row + k, variable, sign * force[k]);
-        if (moment[k] != 0.0) triplets.emplace_back(row + 3 + k, variable, sign * moment[k]);
+        if (force[k] != 0.0) triplets_.emplace_back(row + k, variable, sign * force[k]);
+        if (moment[k] != 0.0) triplets_.emplace_back(row + 3 + k, variable, sign * moment[k]);
       }
     }
-  };
-
-  for (std::size_t p = 0; p < f.points.size(); ++p) {
-    FormulationPoint& point = f.points[p];
-    const PointSpec& spec = specs[p];
-    const model::ContactInterface& contact = m.interfaces[point.interface_index];
-    if (spec.has_radius_row) point.radius_row = num_rows++;
-    auto place = [&](const VariableSpec& variable, int index) {
-      point.generators.push_back({index, variable.force});
-      add_block_entries(contact.block_b, +1.0, index, variable.force, point.force_scale, point.position);
-      add_block_entries(contact.block_a, -1.0, index, variable.force, point.force_scale, point.position);
-      if (variable.in_radius_row) triplets.emplace_back(point.radius_row, index, 1.0);
-    };
-    for (const VariableSpec& variable : spec.orthant) place(variable, next_orthant++);
-    if (!spec.cone.empty()) {
-      for (const VariableSpec& variable : spec.cone) place(variable, next_cone++);
-      soc_dims.push_back(static_cast<Eigen::Index>(spec.cone.size()));
-    }
   }
-  f.num_radius_rows = num_rows - num_equilibrium_rows;
 
-  // Loads, as block wrenches about the centroid: dead on the right-hand side, live in the
-  // multiplier's column.
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(num_rows);
-  Eigen::VectorXd live = Eigen::VectorXd::Zero(num_rows);
-  auto add_wrench = [&](Eigen::VectorXd& target, int block, const Vec3& force, const Vec3& moment_about_centroid) {
-    const int row = f.block_row[block];
-    if (row < 0 || m.blocks[block].is_support()) return;
-    const Vec3 fs = force / f.block_scale[block];
-    const Vec3 ms = moment_about_centroid / (f.block_scale[block] * L);
-    if (options.planar) {
-      target[row] += fs.dot(options.frame.e1);
-      target[row + 1] += fs.dot(options.frame.e2);
-      target[row + 2] += ms.dot(e);
-    } else {
-      target.segment<3>(row) += fs;
-      target.segment<3>(row + 3) += ms;
-    }
-  };
+  const model::Model& m_;
+  const FormulationOptions& options_;
+  Formulation& f_;
+  std::vector<Eigen::Triplet<double>>& triplets_;
+};
+
+/// Adds a load on a free block, as its wrench about the centroid, to the block's rows of `target`.
+void add_wrench(const model::Model& m, const FormulationOptions& options, const Formulation& f,
+                Eigen::VectorXd& target, int block, const Vec3& force, const Vec3& moment_about_centroid) {
+  const int row = f.block_row[block];
+  if (row < 0 || m.blocks[block].is_support()) return;
+  const Vec3 fs = force / f.block_scale[block];
+  const Vec3 ms = moment_about_centroid / (f.block_scale[block] * f.length_scale);
+  if (options.planar) {
+    target[row] += fs.dot(options.frame.e1);
+    target[row + 1] += fs.dot(options.frame.e2);
+    target[row + 2] += ms.dot(options.frame.normal);
+  } else {
+    target.segment<3>(row) += fs;
+    target.segment<3>(row + 3) += ms;
+  }
+}
+
+/// The loads in the equilibrium rows: dead (self-weight and dead point loads) into `dead`, live
+/// (seismic, live point loads; under settlement the ground's reaction -R d on the moving
+/// supports, Portioli & Cascini 2016) into `live`, the multiplier's column.
+void load_vectors(const model::Model& m, const FormulationOptions& options, const Formulation& f, int settlement_row,
+                  Eigen::VectorXd& dead, Eigen::VectorXd& live) {
   for (std::size_t b = 0; b < m.blocks.size(); ++b) {
     const model::Block& block = m.blocks[b];
     if (block.is_support()) continue;
-    add_wrench(rhs, static_cast<int>(b), block.weight() * m.gravity, Vec3::Zero());
+    add_wrench(m, options, f, dead, static_cast<int>(b), block.weight() * m.gravity, Vec3::Zero());
     if (!f.settlement && m.analysis.seismic_direction) {
-      add_wrench(live, static_cast<int>(b), block.weight() * *m.analysis.seismic_direction, Vec3::Zero());
+      add_wrench(m, options, f, live, static_cast<int>(b), block.weight() * *m.analysis.seismic_direction,
+                 Vec3::Zero());
     }
   }
-  for (const model::PointLoad& load : m.dead_loads) {
-    add_wrench(rhs, load.block, load.force, (load.point - m.blocks[load.block].centroid).cross(load.force) + load.moment);
-  }
+  auto moment_of = [&](const model::PointLoad& load) -> Vec3 {
+    return (load.point - m.blocks[load.block].centroid).cross(load.force) + load.moment;
+  };
+  for (const model::PointLoad& load : m.dead_loads) add_wrench(m, options, f, dead, load.block, load.force, moment_of(load));
   if (!f.settlement) {
     for (const model::PointLoad& load : m.live_loads) {
-      add_wrench(live, load.block, load.force, (load.point - m.blocks[load.block].centroid).cross(load.force) + load.moment);
+      add_wrench(m, options, f, live, load.block, load.force, moment_of(load));
     }
-  } else {
-    // The ground holds the moving supports with a reaction -R d (Portioli & Cascini 2016).
-    if (settlement_row >= 0) live[settlement_row] = -1.0;
+  } else if (settlement_row >= 0) {
+    live[settlement_row] = -1.0;
   }
+}
+
+/// The live load's entries, each row in the column of its block's copy of the multiplier (the
+/// moving supports' row in the multiplier's own).
+void add_live_column(const model::Model& m, const Formulation& f, const MultiplierCopies& copies,
+                     const Eigen::VectorXd& live, std::vector<Eigen::Triplet<double>>& triplets) {
+  const auto num_rows = static_cast<int>(live.size());
   std::vector<int> row_owner(num_rows, -1);  // the block whose equilibrium a row states
   for (std::size_t b = 0; b < m.blocks.size(); ++b) {
     if (f.block_row[b] < 0 || m.blocks[b].is_support()) continue;
@@ -507,19 +551,51 @@ Formulation build_formulation(const model::Model& m, const FormulationOptions& o
   }
   for (int row = 0; row < num_rows; ++row) {
     if (live[row] == 0.0) continue;
-    const int variable = row_owner[row] >= 0 ? alpha_variable[row_owner[row]] : f.multiplier_variable;
+    const int variable = row_owner[row] >= 0 ? copies.variable[row_owner[row]] : f.multiplier_variable;
     triplets.emplace_back(row, variable, live[row]);
   }
-  for (const auto& [first, second] : ties) {
+}
+
+}  // namespace
+
+Formulation build_formulation(const model::Model& m, const FormulationOptions& options) {
+  Formulation f;
+  f.options = options;
+  const Scales scales = choose_scales(m);
+  f.length_scale = scales.length;
+  f.force_scale = scales.force;
+  const ForceScales loads = apply_force_scales(m, f);
+  f.settlement = m.analysis.type == model::AnalysisType::Settlement;
+  f.settlement_direction = m.analysis.settlement_direction;
+  f.rows_per_block = options.planar ? 3 : 6;
+
+  int settlement_row = -1;
+  int num_rows = assign_equilibrium_rows(m, f, settlement_row);
+  const std::vector<PointSpec> specs = contact_points(m, options, loads, f);
+  const MultiplierCopies copies = multiplier_copies(m, f);
+
+  // Rows: equilibrium, then one radius row per point that has one, then the multiplier's ties.
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<Eigen::Index> soc_dims;
+  int num_orthant = 0;
+  f.first_radius_row = num_rows;
+  const int num_variables =
+      ContactColumns(m, options, f, triplets).place(specs, copies.count, num_rows, num_orthant, soc_dims);
+  f.num_radius_rows = num_rows - f.first_radius_row;
+
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(num_rows);
+  Eigen::VectorXd live = Eigen::VectorXd::Zero(num_rows);
+  load_vectors(m, options, f, settlement_row, rhs, live);
+  add_live_column(m, f, copies, live, triplets);
+  for (const auto& [first, second] : copies.ties) {
     triplets.emplace_back(num_rows, first, 1.0);
     triplets.emplace_back(num_rows, second, -1.0);
     ++num_rows;
   }
   rhs.conservativeResize(num_rows);
-  rhs.tail(ties.size()).setZero();
-  f.num_tie_rows = static_cast<int>(ties.size());
+  rhs.tail(copies.ties.size()).setZero();
+  f.num_tie_rows = static_cast<int>(copies.ties.size());
 
-  const int num_variables = next_cone;
   f.problem.A.resize(num_rows, num_variables);
   f.problem.A.setFromTriplets(triplets.begin(), triplets.end());
   f.problem.A.makeCompressed();

@@ -1,5 +1,5 @@
 // The static (lower-bound) problem of rigid block limit analysis as a conic program
-// (METHOD.md; Portioli et al. 2014, eq. 1; Portioli & Cascini 2016 for the moving support):
+// (docs/method.md; Portioli et al. 2014, eq. 1; Portioli & Cascini 2016 for the moving support):
 //
 //   maximise alpha  subject to  A c + f_D + alpha f_L = 0,  contact forces c in their friction sets,
 //
@@ -105,11 +105,11 @@ struct Formulation {
   Eigen::VectorXd rhs_with_radii(const std::vector<double>& radii_kN) const;
 };
 
-/// Builds the conic problem. Non-dimensionalised (METHOD.md, "Units and scale"): forces in units
+/// Builds the conic problem. Non-dimensionalised (docs/method.md, "Scaling"): forces in units
 /// of the mean free-block weight (or, for blocks and interfaces whose carried loads lie far from
 /// it, of their own loads: analysis/force_scales.hpp), moments additionally divided by the mean
-/// block size, so mm and m models, N and kN, solve identically. Throws model::ModelError for requests the scene cannot
-/// meet (planar forced on a 3-D scene).
+/// block size, so mm and m models, N and kN, solve identically. Throws model::ModelError for
+/// requests the scene cannot meet (planar forced on a 3-D scene).
 Formulation build_formulation(const model::Model& model, const FormulationOptions& options);
 
 }  // namespace rbla::analysis

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace rbla::analysis {
@@ -72,13 +74,17 @@ double contact_area(const std::vector<Vec3>& polygon, const Vec3& n) {
   return area;
 }
 
-}  // namespace
+/// Groups of free blocks joined by free-free interfaces, with their members, support interfaces
+/// and dead loads gathered once (a scene of many loose blocks has as many groups), each under the
+/// index of its root block.
+struct Groups {
+  std::vector<int> root;  // per block (supports: themselves)
+  std::vector<std::vector<int>> members, base_faces, dead_loads;
+};
 
-InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
-  InitialReaction out;
+Groups group_free_blocks(const model::Model& m) {
   const std::size_t num_blocks = m.blocks.size();
-
-  // Groups of free blocks joined by free-free interfaces (union-find with path halving).
+  // Union-find with path halving.
   std::vector<int> parent(num_blocks);
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int b) {
@@ -89,131 +95,166 @@ InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
     if (!m.blocks[face.block_a].is_support() && !m.blocks[face.block_b].is_support())
       parent[find(face.block_a)] = find(face.block_b);
   }
-
-  // Members, support interfaces and dead loads of each group, gathered once (a scene of many
-  // loose blocks has as many groups).
-  std::vector<std::vector<int>> members(num_blocks), base_faces(num_blocks), dead_loads(num_blocks);
+  Groups groups;
+  groups.root.resize(num_blocks);
+  for (std::size_t b = 0; b < num_blocks; ++b) groups.root[b] = find(static_cast<int>(b));
+  groups.members.resize(num_blocks);
+  groups.base_faces.resize(num_blocks);
+  groups.dead_loads.resize(num_blocks);
   for (std::size_t b = 0; b < num_blocks; ++b)
-    if (!m.blocks[b].is_support()) members[find(static_cast<int>(b))].push_back(static_cast<int>(b));
+    if (!m.blocks[b].is_support()) groups.members[groups.root[b]].push_back(static_cast<int>(b));
   for (std::size_t i = 0; i < m.interfaces.size(); ++i) {
     const auto& face = m.interfaces[i];
     const bool a_support = m.blocks[face.block_a].is_support();
     if (a_support != m.blocks[face.block_b].is_support())
-      base_faces[find(a_support ? face.block_b : face.block_a)].push_back(static_cast<int>(i));
+      groups.base_faces[groups.root[a_support ? face.block_b : face.block_a]].push_back(static_cast<int>(i));
   }
   for (std::size_t i = 0; i < m.dead_loads.size(); ++i)
-    dead_loads[find(m.dead_loads[i].block)].push_back(static_cast<int>(i));
+    groups.dead_loads[groups.root[m.dead_loads[i].block]].push_back(static_cast<int>(i));
+  return groups;
+}
 
-  double total = 0;
-  for (std::size_t root_block = 0; root_block < num_blocks; ++root_block) {
-    if (m.blocks[root_block].is_support() || find(static_cast<int>(root_block)) != static_cast<int>(root_block))
-      continue;  // one pass per group, at its root
-    const int root = static_cast<int>(root_block);
+/// A group's interfaces with the supports, normals from the support into the body; `base_area`
+/// and `o`, the base's area centroid (which keeps K well scaled), are set from them.
+std::vector<BaseFace> base_of(const model::Model& m, const std::vector<int>& base_faces, double& base_area, Vec3& o) {
+  std::vector<BaseFace> base;
+  base_area = 0;
+  o = Vec3::Zero();
+  for (int index : base_faces) {
+    const auto& face = m.interfaces[index];
+    const bool a_support = m.blocks[face.block_a].is_support();
+    const int ground = a_support ? face.block_a : face.block_b;
+    BaseFace f;
+    f.polygon = face.polygon;
+    f.contact = face.polygon;
+    f.normal = a_support ? face.normal : Vec3(-face.normal);
+    f.moving = m.blocks[ground].role == model::BlockRole::MovingSupport;
+    base.push_back(std::move(f));
+    base_area += face.area;
+    o += face.area * face.centroid;
+  }
+  return base;
+}
 
-    std::vector<BaseFace> base;
-    double base_area = 0;
-    Vec3 o = Vec3::Zero();  // area centroid of the base: keeps K well scaled
-    for (int index : base_faces[root]) {
-      const auto& face = m.interfaces[index];
-      const bool a_support = m.blocks[face.block_a].is_support();
-      const int ground = a_support ? face.block_a : face.block_b;
-      BaseFace f;
-      f.polygon = face.polygon;
-      f.contact = face.polygon;
-      f.normal = a_support ? face.normal : Vec3(-face.normal);  // from the support into the body
-      f.moving = m.blocks[ground].role == model::BlockRole::MovingSupport;
-      base.push_back(std::move(f));
-      base_area += face.area;
-      o += face.area * face.centroid;
+/// The dead loads of a group (self-weight and fixed loads) as a wrench about o.
+Vec6 dead_wrench(const model::Model& m, const Groups& groups, int root, const Vec3& o) {
+  Vec6 load = Vec6::Zero();
+  auto add = [&](const Vec3& force, const Vec3& point, const Vec3& moment) {
+    load.head<3>() += force;
+    load.tail<3>() += (point - o).cross(force) + moment;
+  };
+  for (int b : groups.members[root]) add(m.blocks[b].weight() * m.gravity, m.blocks[b].centroid, Vec3::Zero());
+  for (int i : groups.dead_loads[root]) add(m.dead_loads[i].force, m.dead_loads[i].point, m.dead_loads[i].moment);
+  return load;
+}
+
+/// The no-tension base pressure of one rigid body: solve on the part in contact, lift where the
+/// pressure pulls, repeat. Settled when a pass changes neither the contact area nor s: s was then
+/// solved on the very contact it leaves in place (comparing areas alone would miss a neutral axis
+/// that turns). Returns s, or empty with `why_not` (completed by `group`, the body's name).
+std::optional<Vec6> settle_base_pressure(std::vector<BaseFace>& base, const Vec3& o, double base_area,
+                                         const Vec6& load, const std::string& group, std::string& why_not,
+                                         int& passes) {
+  // Forces and moments mix units: with l = sqrt(base area), D = diag(1, 1, 1, 1/l, 1/l, 1/l)
+  // brings the moment rows and rotation columns to force units, so that the rank decision and
+  // the acceptance test below depend neither on the length unit nor on the size of the base.
+  const double ell = std::sqrt(base_area);
+  Vec6 D;
+  D << 1.0, 1.0, 1.0, 1.0 / ell, 1.0 / ell, 1.0 / ell;
+  const Vec6 scaled_load = D.cwiseProduct(load);
+  constexpr int kMaxPasses = 100;
+  Vec6 s = Vec6::Zero();
+  bool settled = false;
+  int pass = 0;
+  for (; pass < kMaxPasses && !settled; ++pass) {
+    Mat6 K = Mat6::Zero();
+    for (const BaseFace& f : base) {
+      integrate_quadratic(f.contact, f.normal, [&](double w, const Vec3& x) {
+        const Vec6 g = g_of(x, f.normal, o);
+        K.noalias() += w * g * g.transpose();
+      });
     }
+    const Mat6 scaled_K = D.asDiagonal() * K * D.asDiagonal();
+    // Normal springs alone give no stiffness to some motions (sliding on a flat base): the
+    // least-squares solution is the one with no motion there; it is valid only if it carries
+    // the whole load.
+    Eigen::CompleteOrthogonalDecomposition<Mat6> decomposition;
+    decomposition.setThreshold(1e-10);
+    decomposition.compute(scaled_K);
+    const Vec6 scaled_s = decomposition.solve(-scaled_load);
+    const double imbalance = (scaled_K * scaled_s + scaled_load).norm();
+    if (!(imbalance <= 1e-9 * scaled_load.norm())) {
+      why_not = "the dead loads on " + group +
+                " have a part that normal base pressure cannot carry (for example a horizontal load on a "
+                "flat base)";
+      return std::nullopt;
+    }
+    const Vec6 previous_scaled_s = D.cwiseInverse().cwiseProduct(s);
+    s = D.cwiseProduct(scaled_s);
+    double changed = 0, contact = 0;
+    for (BaseFace& f : base) {
+      std::vector<Vec3> next = compressed_part(f.polygon, f.normal, o, s);
+      const double before = contact_area(f.contact, f.normal);
+      const double after = contact_area(next, f.normal);
+      changed += std::abs(after - before);
+      contact += after;
+      f.contact = std::move(next);
+    }
+    if (!(contact > 1e-12 * base_area)) {
+      why_not = "the base of " + group + " lifts everywhere (its dead loads would need tension in the ground)";
+      return std::nullopt;
+    }
+    settled = pass > 0 && changed <= 1e-12 * base_area && (scaled_s - previous_scaled_s).norm() <= 1e-10 * scaled_s.norm();
+  }
+  if (!settled) {
+    why_not = "the no-tension base pressure under " + group + " did not settle in " + std::to_string(kMaxPasses) +
+              " passes";
+    return std::nullopt;
+  }
+  passes = pass;
+  return s;
+}
+
+/// Adds what the moving supports under a settled base hold along d to `total` (point by point,
+/// in the order of the groups and faces), and says whether part of the base lifts.
+void add_moving_support_reaction(const std::vector<BaseFace>& base, const Vec3& o, const Vec6& s, const Vec3& d,
+                                 double& total, bool& base_lifts) {
+  for (const BaseFace& f : base) {
+    if (contact_area(f.contact, f.normal) < contact_area(f.polygon, f.normal) * (1.0 - 1e-12)) base_lifts = true;
+    if (!f.moving) continue;
+    // Force of the body on the support: −p n; its component along d is what the ground holds.
+    double pressure_resultant = 0;
+    integrate_quadratic(f.contact, f.normal,
+                        [&](double w, const Vec3& x) { pressure_resultant += w * g_of(x, f.normal, o).dot(s); });
+    total += pressure_resultant * (-f.normal.dot(d));
+  }
+}
+
+}  // namespace
+
+InitialReaction initial_base_reaction(const model::Model& m, const Vec3& d) {
+  InitialReaction out;
+  const Groups groups = group_free_blocks(m);
+  double total = 0;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    const int root = static_cast<int>(b);
+    if (m.blocks[b].is_support() || groups.root[b] != root) continue;  // one pass per group, at its root
+    double base_area = 0;
+    Vec3 o;
+    std::vector<BaseFace> base = base_of(m, groups.base_faces[root], base_area, o);
     // Messages name one block of the group, so that the user can find it.
-    const std::string group = "the group of free blocks with block '" + m.blocks[root_block].id + "'";
+    const std::string group = "the group of free blocks with block '" + m.blocks[b].id + "'";
     if (base.empty() || !(base_area > 0)) {
       out.why_not = group + " touches no support";
       return out;
     }
     o /= base_area;
-
-    // Dead loads of the group as a wrench about o: self-weight and fixed loads.
-    Vec6 load = Vec6::Zero();
-    auto add = [&](const Vec3& force, const Vec3& point, const Vec3& moment) {
-      load.head<3>() += force;
-      load.tail<3>() += (point - o).cross(force) + moment;
-    };
-    for (int b : members[root]) add(m.blocks[b].weight() * m.gravity, m.blocks[b].centroid, Vec3::Zero());
-    for (int i : dead_loads[root]) add(m.dead_loads[i].force, m.dead_loads[i].point, m.dead_loads[i].moment);
-
-    // Forces and moments mix units: with l = sqrt(base area), D = diag(1, 1, 1, 1/l, 1/l, 1/l)
-    // brings the moment rows and rotation columns to force units, so that the rank decision and
-    // the acceptance test below depend neither on the length unit nor on the size of the base.
-    const double ell = std::sqrt(base_area);
-    Vec6 D;
-    D << 1.0, 1.0, 1.0, 1.0 / ell, 1.0 / ell, 1.0 / ell;
-    const Vec6 scaled_load = D.cwiseProduct(load);
-
-    // No-tension iteration: solve on the part in contact, lift where the pressure pulls, repeat.
-    // Settled when a pass changes neither the contact area nor s: s was then solved on the very
-    // contact it leaves in place (comparing areas alone would miss a neutral axis that turns).
-    constexpr int kMaxPasses = 100;
-    Vec6 s = Vec6::Zero();
-    bool settled = false;
-    int pass = 0;
-    for (; pass < kMaxPasses && !settled; ++pass) {
-      Mat6 K = Mat6::Zero();
-      for (const BaseFace& f : base) {
-        integrate_quadratic(f.contact, f.normal, [&](double w, const Vec3& x) {
-          const Vec6 g = g_of(x, f.normal, o);
-          K.noalias() += w * g * g.transpose();
-        });
-      }
-      const Mat6 scaled_K = D.asDiagonal() * K * D.asDiagonal();
-      // Normal springs alone give no stiffness to some motions (sliding on a flat base): the
-      // least-squares solution is the one with no motion there; it is valid only if it carries
-      // the whole load.
-      Eigen::CompleteOrthogonalDecomposition<Mat6> decomposition;
-      decomposition.setThreshold(1e-10);
-      decomposition.compute(scaled_K);
-      const Vec6 scaled_s = decomposition.solve(-scaled_load);
-      const double imbalance = (scaled_K * scaled_s + scaled_load).norm();
-      if (!(imbalance <= 1e-9 * scaled_load.norm())) {
-        out.why_not = "the dead loads on " + group +
-                      " have a part that normal base pressure cannot carry (for example a horizontal load on a "
-                      "flat base)";
-        return out;
-      }
-      const Vec6 previous_scaled_s = D.cwiseInverse().cwiseProduct(s);
-      s = D.cwiseProduct(scaled_s);
-      double changed = 0, contact = 0;
-      for (BaseFace& f : base) {
-        std::vector<Vec3> next = compressed_part(f.polygon, f.normal, o, s);
-        const double before = contact_area(f.contact, f.normal);
-        const double after = contact_area(next, f.normal);
-        changed += std::abs(after - before);
-        contact += after;
-        f.contact = std::move(next);
-      }
-      if (!(contact > 1e-12 * base_area)) {
-        out.why_not = "the base of " + group + " lifts everywhere (its dead loads would need tension in the ground)";
-        return out;
-      }
-      settled = pass > 0 && changed <= 1e-12 * base_area && (scaled_s - previous_scaled_s).norm() <= 1e-10 * scaled_s.norm();
-    }
-    if (!settled) {
-      out.why_not = "the no-tension base pressure under " + group + " did not settle in " +
-                    std::to_string(kMaxPasses) + " passes";
-      return out;
-    }
-    out.iterations = std::max(out.iterations, pass);
-    for (const BaseFace& f : base) {
-      if (contact_area(f.contact, f.normal) < contact_area(f.polygon, f.normal) * (1.0 - 1e-12))
-        out.base_lifts = true;
-      if (!f.moving) continue;
-      // Force of the body on the support: −p n; its component along d is what the ground holds.
-      double pressure_resultant = 0;
-      integrate_quadratic(f.contact, f.normal,
-                          [&](double w, const Vec3& x) { pressure_resultant += w * g_of(x, f.normal, o).dot(s); });
-      total += pressure_resultant * (-f.normal.dot(d));
-    }
+    int passes = 0;
+    const std::optional<Vec6> s =
+        settle_base_pressure(base, o, base_area, dead_wrench(m, groups, root, o), group, out.why_not, passes);
+    if (!s) return out;
+    out.iterations = std::max(out.iterations, passes);
+    add_moving_support_reaction(base, o, *s, d, total, out.base_lifts);
   }
   out.value = total;
   return out;

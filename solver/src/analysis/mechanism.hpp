@@ -33,7 +33,7 @@ inline constexpr double kCrackFraction = 0.02;
 
 /// Block velocities from the equality multipliers y. The multipliers of a block's equilibrium
 /// rows are minus its virtual velocity (the dual of A c = b is c^T.. = y^T A, so y^T A c is the
-/// virtual power of the contact forces; METHOD.md, "Kinematic (dual) side"). Moment rows were
+/// virtual power of the contact forces; docs/method.md, "The kinematic side: the mechanism"). Moment rows were
 /// divided by the length scale, so rotations are rescaled by it. Not yet normalised.
 std::vector<BlockMotion> block_velocities(const model::Model& model, const Formulation& formulation,
                                           const Eigen::VectorXd& y);

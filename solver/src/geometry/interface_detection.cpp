@@ -2,6 +2,7 @@
 
 #include "geometry/polygon2d.hpp"
 #include "geometry/polyhedron.hpp"
+#include "geometry/sweep.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -124,14 +125,8 @@ std::vector<BlockPatches> all_patches(const model::Model& m, const DetectionTole
 /// pad does not widen the search around every block on it), sorted.
 std::vector<std::pair<int, int>> candidate_pairs(const model::Model& m, const std::vector<BlockPatches>& bp) {
   const int n = static_cast<int>(bp.size());
-  const model::BoundingBox extent = m.bounding_box();
-  int axis = 0;
-  (extent.max - extent.min).maxCoeff(&axis);
-  std::vector<int> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return bp[a].box_min[axis] < bp[b].box_min[axis] || (bp[a].box_min[axis] == bp[b].box_min[axis] && a < b);
-  });
+  const int axis = sweep_axis(m);
+  const std::vector<int> order = sweep_order(n, [&](int i) { return bp[i].box_min[axis]; });
   std::vector<std::pair<int, int>> candidates;
   for (int i = 0; i < n; ++i) {
     const int a = order[i];

@@ -14,7 +14,7 @@ namespace rbla::geometry {
 /// Right-handed local frame (n, t1, t2) with n x t1 = t2. t1 is the projection on the interface
 /// plane of the global axis least aligned with n (ties go to x, then y), so axis-aligned
 /// interfaces get axis-aligned tangents: an axis-aligned friction pyramid is then exact for
-/// in-plane loads on walls symmetric about their mid-plane (METHOD.md, "A free exact oracle").
+/// in-plane loads on walls symmetric about their mid-plane (docs/method.md, "An exact check for in-plane loads").
 void local_frame(const Eigen::Vector3d& normal, Eigen::Vector3d& tangent1, Eigen::Vector3d& tangent2);
 
 /// The tolerances detection applies, derived once from the model's settings.

@@ -418,9 +418,8 @@ bool is_convex(const Polygon2& polygon, double tol) {
 namespace {
 
 // pa, pb: prepared (simplified, CCW) inputs; t: effective tolerance.
-std::vector<Polygon2> general_prepared(const Polygon2& pa, const Polygon2& pb, double t, double min_area) {
-  // 1. Snap all vertices into one pool and build the directed (CCW) boundary edges.
-  VertexPool pool(t);
+/// Step 1: all vertices snapped into one pool, and the directed (CCW) boundary edges of both.
+std::vector<Edge> boundary_edges(const Polygon2& pa, const Polygon2& pb, VertexPool& pool) {
   std::vector<Edge> edges;
   edges.reserve(2 * (pa.size() + pb.size()));
   for (int owner = 0; owner < 2; ++owner) {
@@ -432,18 +431,23 @@ std::vector<Polygon2> general_prepared(const Polygon2& pa, const Polygon2& pb, d
       if (u != v) edges.push_back({u, v, owner});
     }
   }
+  return edges;
+}
 
-  // 2. Conforming arrangement. Splitting at a snapped crossing bends edges by up to tol, which
-  //    can (rarely) create a new crossing or vertex-on-edge contact, hence the short fixed point.
+/// Step 2: a conforming arrangement. Splitting at a snapped crossing bends edges by up to tol,
+/// which can (rarely) create a new crossing or vertex-on-edge contact, hence the short fixed point.
+void make_conforming(std::vector<Edge>& edges, VertexPool& pool, double t) {
   constexpr int kMaxRounds = 8;
   for (int round = 0;; ++round) {
     edges = split_at_vertices(edges, pool, t);
     if (round == kMaxRounds || !split_at_crossings(edges, pool)) break;
   }
+}
 
-  // 3. Merge coincident arrangement edges; net direction count per input. For a simple input the
-  //    count is +1/-1 on its boundary (interior on the left/right of u->v) and 0 elsewhere; a
-  //    zero-width spike cancels to 0, as it should.
+/// Step 3: coincident arrangement edges merged, with the net direction count of each input. For
+/// a simple input the count is +1/-1 on its boundary (interior on the left/right of u->v) and 0
+/// elsewhere; a zero-width spike cancels to 0, as it should.
+std::map<std::pair<int, int>, std::pair<int, int>> net_direction_counts(const std::vector<Edge>& edges) {
   std::map<std::pair<int, int>, std::pair<int, int>> merged;
   for (const Edge& e : edges) {
     if (e.u == e.v) continue;
@@ -451,10 +455,14 @@ std::vector<Polygon2> general_prepared(const Polygon2& pa, const Polygon2& pb, d
     auto& w = merged[{std::min(e.u, e.v), std::max(e.u, e.v)}];
     (e.owner == 0 ? w.first : w.second) += s;
   }
+  return merged;
+}
 
-  // 4. Keep the directions with the overlap on the left and the outside on the right. This yields
-  //    A-edges inside B, B-edges inside A, and shared same-direction edges once; shared
-  //    opposite-direction edges (faces that only touch) have an outside on both sides.
+/// Step 4: the directions with the overlap on the left and the outside on the right. This yields
+/// A-edges inside B, B-edges inside A, and shared same-direction edges once; shared
+/// opposite-direction edges (faces that only touch) have an outside on both sides.
+std::vector<HalfEdge> overlap_boundary(const std::map<std::pair<int, int>, std::pair<int, int>>& merged,
+                                       const std::vector<Edge>& edges, const VertexPool& pool) {
   std::vector<HalfEdge> half;
   for (const auto& [key, w] : merged) {
     const auto [u, v] = key;
@@ -479,12 +487,14 @@ std::vector<Polygon2> general_prepared(const Polygon2& pa, const Polygon2& pb, d
     const Point2 d = pool[to] - pool[from];
     half.push_back({from, to, std::atan2(d.y(), d.x())});
   }
-  if (half.empty()) return {};
+  return half;
+}
 
-  // 5. Chain into loops. Where several result edges leave one vertex (components pinched at a
-  //    point), take the first outgoing edge clockwise from the reversed incoming edge: the DCEL
-  //    "next" rule (de Berg et al. §2.2), which traces one face and so splits pinched components
-  //    into separate loops instead of a figure-eight.
+/// Step 5: the half-edges chained into loops. Where several result edges leave one vertex
+/// (components pinched at a point), the next edge is the first outgoing one clockwise from the
+/// reversed incoming edge: the DCEL "next" rule (de Berg et al. §2.2), which traces one face and
+/// so splits pinched components into separate loops instead of a figure-eight.
+std::vector<Polygon2> chain_loops(const std::vector<HalfEdge>& half, const VertexPool& pool) {
   std::vector<std::vector<int>> outgoing(static_cast<std::size_t>(pool.size()));
   for (std::size_t h = 0; h < half.size(); ++h)
     outgoing[static_cast<std::size_t>(half[h].from)].push_back(static_cast<int>(h));
@@ -527,7 +537,16 @@ std::vector<Polygon2> general_prepared(const Polygon2& pa, const Polygon2& pb, d
     // folded the arrangement); its area would be meaningless, so it is dropped.
     if (closed) loops.push_back(std::move(loop));
   }
-  return finish(std::move(loops), t, min_area);
+  return loops;
+}
+
+std::vector<Polygon2> general_prepared(const Polygon2& pa, const Polygon2& pb, double t, double min_area) {
+  VertexPool pool(t);
+  std::vector<Edge> edges = boundary_edges(pa, pb, pool);
+  make_conforming(edges, pool, t);
+  const std::vector<HalfEdge> half = overlap_boundary(net_direction_counts(edges), edges, pool);
+  if (half.empty()) return {};
+  return finish(chain_loops(half, pool), t, min_area);
 }
 
 std::vector<Polygon2> convex_prepared(const Polygon2& pa, const Polygon2& pb, double t, double min_area) {

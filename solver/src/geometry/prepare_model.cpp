@@ -66,101 +66,127 @@ void first_crossing(const std::vector<Vec3>& corners, const Vec3& normal, int& f
   }
 }
 
+/// What the checks of one block report to, and the sizes they are relative to.
+struct BlockChecks {
+  std::size_t index;
+  std::string pointer;          // "/blocks/i"
+  std::string name;             // "block 'id'"
+  double diagonal;              // m, of the block's bounding box
+  double model_tolerance;       // m
+  std::vector<InputIssue>& errors;
+  std::vector<model::Warning>& warnings;
+};
+
+/// Every face has three distinct vertices, an area, no crossing edges; warped faces are collected.
+bool faces_sound(const model::Block& block, const BlockChecks& c, std::vector<WarpedFace>& warped) {
+  bool faces_ok = true;
+  for (std::size_t f = 0; f < block.faces.size(); ++f) {
+    const std::string face_pointer = c.pointer + "/faces/" + std::to_string(f);
+    std::set<int> distinct(block.faces[f].begin(), block.faces[f].end());
+    if (distinct.size() < 3) {
+      c.errors.push_back({face_pointer, c.name + ": face " + std::to_string(f) + " has fewer than 3 distinct vertices"});
+      faces_ok = false;
+      continue;
+    }
+    const FaceGeometry face = face_geometry(block.vertices, block.faces[f]);
+    if (face.area <= 1e-10 * c.diagonal * c.diagonal) {
+      c.errors.push_back({face_pointer, c.name + ": face " + std::to_string(f) + " has zero area"});
+      faces_ok = false;
+      continue;
+    }
+    std::vector<Vec3> corners;
+    for (const int k : block.faces[f]) corners.push_back(block.vertices[k]);
+    int e1 = -1, e2 = -1;
+    first_crossing(corners, face.normal, e1, e2);
+    if (e1 >= 0) {
+      c.errors.push_back({face_pointer, c.name + ": face " + std::to_string(f) + " is self-intersecting (its edges " +
+                                            std::to_string(e1) + " and " + std::to_string(e2) + " cross)"});
+      faces_ok = false;
+      continue;
+    }
+    if (face.max_plane_deviation > std::max(c.model_tolerance, 1e-6 * c.diagonal)) {
+      warped.push_back({static_cast<int>(c.index), static_cast<int>(f), face.max_plane_deviation,
+                        polygon_diameter(block.vertices, block.faces[f])});
+    }
+  }
+  return faces_ok;
+}
+
+/// The faces close a volume and are consistently oriented (T-junctions accepted, with a warning).
+bool closed(const model::Block& block, const BlockChecks& c) {
+  // Vertices closer than this are the same vertex; relative to the block so that a 1 mm wedge in
+  // a 100 m model is still checked at its own scale.
+  const double merge_tol = std::min(c.model_tolerance, 1e-6 * c.diagonal);
+  const ClosureCheck closure = check_closure(block.vertices, block.faces, merge_tol);
+  if (!closure.consistent) {
+    c.errors.push_back({c.pointer + "/faces", c.name + " has inconsistently oriented faces: " + closure.detail});
+    return false;
+  }
+  if (!closure.closed) {
+    c.errors.push_back({c.pointer + "/faces", c.name + " is open (its faces do not close a volume): " + closure.detail});
+    return false;
+  }
+  if (closure.needed_t_junction_split) {
+    c.warnings.push_back({"t_junctions", c.name + " has vertices lying on edges of other faces (T-junctions); "
+                                                  "accepted as closed",
+                          c.pointer + "/faces"});
+  }
+  return true;
+}
+
+/// Sets the block's volume and centroid, unless the volume is zero or negative (inverted faces).
+bool set_mass_properties(model::Block& block, const BlockChecks& c) {
+  const MassProperties mass = mass_properties(block.vertices, block.faces);
+  if (std::abs(mass.volume) <= 1e-9 * c.diagonal * c.diagonal * c.diagonal) {
+    c.errors.push_back({c.pointer, c.name + " has zero volume (flat or collapsed)"});
+    return false;
+  }
+  if (mass.volume < 0.0) {
+    c.errors.push_back({c.pointer + "/faces", c.name + " is inverted: its faces are ordered clockwise seen from "
+                                                       "outside (inward normals); reverse every face"});
+    return false;
+  }
+  block.volume = mass.volume;
+  block.centroid = mass.centroid;
+  return true;
+}
+
+/// Warnings where the CAD's own volume or centroid disagrees with the computed ones.
+void compare_with_cad(const model::Block& block, const BlockChecks& c, const model::Units& units) {
+  if (block.cad_volume && std::abs(*block.cad_volume - block.volume) > kCadVolumeTolerance * block.volume) {
+    const double l3 = std::pow(units.length_to_m, 3);
+    c.warnings.push_back({"cad_volume_mismatch",
+                          c.name + ": the CAD volume " + format(*block.cad_volume / l3) + " differs from the volume " +
+                              format(block.volume / l3) + " computed from its faces; the computed one is used",
+                          c.pointer + "/volume", std::abs(*block.cad_volume - block.volume) / block.volume});
+  }
+  if (block.cad_centroid &&
+      (*block.cad_centroid - block.centroid).norm() > std::max(kCadCentroidTolerance * c.diagonal, c.model_tolerance)) {
+    c.warnings.push_back({"cad_centroid_mismatch",
+                          c.name + ": the CAD centroid is " +
+                              length6((*block.cad_centroid - block.centroid).norm(), units) +
+                              " from the centroid computed from its faces; the computed one is used",
+                          c.pointer + "/centroid", (*block.cad_centroid - block.centroid).norm()});
+  }
+}
+
 void prepare_block(model::Block& block, std::size_t index, double model_tolerance, const model::Units& units,
                    std::vector<InputIssue>& errors, std::vector<model::Warning>& warnings,
                    std::vector<WarpedFace>& warped) {
-  const std::string pointer = "/blocks/" + std::to_string(index);
-  const std::string name = "block '" + block.id + "'";
   Vec3 lo = block.vertices[0], hi = block.vertices[0];
   for (const Vec3& v : block.vertices) {
     lo = lo.cwiseMin(v);
     hi = hi.cwiseMax(v);
   }
-  const double diagonal = (hi - lo).norm();
-  if (diagonal == 0.0) {
-    errors.push_back({pointer + "/vertices", name + " is degenerate: all its vertices coincide"});
+  const BlockChecks checks{index,           "/blocks/" + std::to_string(index), "block '" + block.id + "'",
+                           (hi - lo).norm(), model_tolerance,                   errors,
+                           warnings};
+  if (checks.diagonal == 0.0) {
+    errors.push_back({checks.pointer + "/vertices", checks.name + " is degenerate: all its vertices coincide"});
     return;
   }
-  // Vertices closer than this are the same vertex; relative to the block so that a 1 mm wedge in
-  // a 100 m model is still checked at its own scale.
-  const double merge_tol = std::min(model_tolerance, 1e-6 * diagonal);
-
-  bool faces_ok = true;
-  for (std::size_t f = 0; f < block.faces.size(); ++f) {
-    const std::string face_pointer = pointer + "/faces/" + std::to_string(f);
-    std::set<int> distinct(block.faces[f].begin(), block.faces[f].end());
-    if (distinct.size() < 3) {
-      errors.push_back({face_pointer, name + ": face " + std::to_string(f) + " has fewer than 3 distinct vertices"});
-      faces_ok = false;
-      continue;
-    }
-    const FaceGeometry face = face_geometry(block.vertices, block.faces[f]);
-    if (face.area <= 1e-10 * diagonal * diagonal) {
-      errors.push_back({face_pointer, name + ": face " + std::to_string(f) + " has zero area"});
-      faces_ok = false;
-      continue;
-    }
-    {
-      std::vector<Vec3> corners;
-      for (const int k : block.faces[f]) corners.push_back(block.vertices[k]);
-      int e1 = -1, e2 = -1;
-      first_crossing(corners, face.normal, e1, e2);
-      if (e1 >= 0) {
-        errors.push_back({face_pointer, name + ": face " + std::to_string(f) + " is self-intersecting (its edges " +
-                                            std::to_string(e1) + " and " + std::to_string(e2) + " cross)"});
-        faces_ok = false;
-        continue;
-      }
-    }
-    if (face.max_plane_deviation > std::max(model_tolerance, 1e-6 * diagonal)) {
-      warped.push_back({static_cast<int>(index), static_cast<int>(f), face.max_plane_deviation,
-                        polygon_diameter(block.vertices, block.faces[f])});
-    }
-  }
-  if (!faces_ok) return;
-
-  const ClosureCheck closure = check_closure(block.vertices, block.faces, merge_tol);
-  if (!closure.consistent) {
-    errors.push_back({pointer + "/faces", name + " has inconsistently oriented faces: " + closure.detail});
-    return;
-  }
-  if (!closure.closed) {
-    errors.push_back({pointer + "/faces", name + " is open (its faces do not close a volume): " + closure.detail});
-    return;
-  }
-  if (closure.needed_t_junction_split) {
-    warnings.push_back({"t_junctions", name + " has vertices lying on edges of other faces (T-junctions); "
-                                              "accepted as closed",
-                        pointer + "/faces"});
-  }
-
-  const MassProperties mass = mass_properties(block.vertices, block.faces);
-  if (std::abs(mass.volume) <= 1e-9 * diagonal * diagonal * diagonal) {
-    errors.push_back({pointer, name + " has zero volume (flat or collapsed)"});
-    return;
-  }
-  if (mass.volume < 0.0) {
-    errors.push_back({pointer + "/faces", name + " is inverted: its faces are ordered clockwise seen from "
-                                                 "outside (inward normals); reverse every face"});
-    return;
-  }
-  block.volume = mass.volume;
-  block.centroid = mass.centroid;
-
-  if (block.cad_volume && std::abs(*block.cad_volume - block.volume) > kCadVolumeTolerance * block.volume) {
-    const double l3 = std::pow(units.length_to_m, 3);
-    warnings.push_back({"cad_volume_mismatch",
-                        name + ": the CAD volume " + format(*block.cad_volume / l3) + " differs from the volume " +
-                            format(block.volume / l3) + " computed from its faces; the computed one is used",
-                        pointer + "/volume", std::abs(*block.cad_volume - block.volume) / block.volume});
-  }
-  if (block.cad_centroid &&
-      (*block.cad_centroid - block.centroid).norm() > std::max(kCadCentroidTolerance * diagonal, model_tolerance)) {
-    warnings.push_back({"cad_centroid_mismatch",
-                        name + ": the CAD centroid is " + length6((*block.cad_centroid - block.centroid).norm(), units) +
-                            " from the centroid computed from its faces; the computed one is used",
-                        pointer + "/centroid", (*block.cad_centroid - block.centroid).norm()});
-  }
+  if (!faces_sound(block, checks, warped) || !closed(block, checks) || !set_mass_properties(block, checks)) return;
+  compare_with_cad(block, checks, units);
 }
 
 /// Where a given interface is in the model file: the reader drops repeated interfaces, so its
@@ -277,39 +303,29 @@ void check_overlaps(const model::Model& m, double tolerance, std::vector<InputIs
   }
 }
 
-}  // namespace
-
-PrepareReport prepare_model(model::Model& m) {
-  PrepareReport report;
-  const auto start = std::chrono::steady_clock::now();
-  const double tolerance = m.distance_tolerance();
-
-  std::vector<InputIssue> errors;
-  // A distance tolerance as large as the model merges everything (the schema caps the relative
-  // one at 0.1 of the diagonal; the absolute one has no cap there): refuse it rather than answer.
+/// A distance tolerance as large as the model merges everything (the schema caps the relative
+/// one at 0.1 of the diagonal; the absolute one has no cap there): refuse it rather than answer.
+void check_distance_tolerance(const model::Model& m) {
   if (m.detection.distance_tolerance && *m.detection.distance_tolerance > 0.1 * m.bounding_box().diagonal()) {
     throw model::ModelError("/detection/distance_tolerance",
                             "is " + length6(*m.detection.distance_tolerance, m.units) +
                                 ", more than a tenth of the model's size (" +
                                 length6(m.bounding_box().diagonal(), m.units) + " across)");
   }
-  std::vector<WarpedFace> warped;
-  for (std::size_t i = 0; i < m.blocks.size(); ++i) {
-    prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings, warped);
-  }
-  if (!errors.empty()) throw model::ModelError(errors);
-  check_overlaps(m, tolerance, errors, m.warnings);
-  if (!errors.empty()) throw model::ModelError(errors);
-  warn_warped_faces(warped, m);
+}
 
-  // Loads given without a point act at the centroid, known only now.
+/// Loads given without a point act at the centroid, known only once the blocks are prepared.
+void place_loads_without_point(model::Model& m) {
   for (auto* loads : {&m.dead_loads, &m.live_loads}) {
     for (model::PointLoad& load : *loads) {
       if (std::isnan(load.point.x())) load.point = m.blocks[load.block].centroid;
     }
   }
+}
 
-  // Interfaces the CAD gave: frames from their polygons.
+/// Interfaces the CAD gave: frames from their polygons, checked against their blocks' faces;
+/// those between two supports are dropped with a warning.
+void prepare_given_interfaces(model::Model& m, double tolerance, std::vector<InputIssue>& errors) {
   std::vector<model::ContactInterface> kept;
   for (std::size_t i = 0; i < m.interfaces.size(); ++i) {
     model::ContactInterface& contact = m.interfaces[i];
@@ -325,36 +341,37 @@ PrepareReport prepare_model(model::Model& m) {
   }
   if (!errors.empty()) throw model::ModelError(errors);
   m.interfaces = std::move(kept);
-  report.geometry_seconds = seconds_since(start);
+}
 
-  const bool detect = m.detection.mode == model::DetectionMode::Merge ||
-                      (m.detection.mode == model::DetectionMode::Auto && m.interfaces.empty());
-  if (detect) {
-    const auto detect_start = std::chrono::steady_clock::now();
-    std::vector<std::pair<int, int>> covered;
-    for (const auto& contact : m.interfaces) {
-      covered.emplace_back(std::min(contact.block_a, contact.block_b), std::max(contact.block_a, contact.block_b));
-    }
-    DetectionOutcome outcome = detect_interfaces(m, covered);
-    std::vector<model::ContactInterface>& found = outcome.interfaces;
-    m.near_misses = std::move(outcome.near_misses);
-    m.detection_summary = outcome.summary;
-    report.detection = outcome.summary;
-    std::set<std::string> used_ids;
-    for (const auto& contact : m.interfaces) used_ids.insert(contact.id);
-    std::size_t next = 0;
-    for (auto& contact : found) {
-      do {
-        contact.id = "I" + std::to_string(next++);
-      } while (used_ids.count(contact.id));
-      m.interfaces.push_back(std::move(contact));
-    }
-    report.detect_seconds = seconds_since(detect_start);
-    report.detection_ran = true;
+/// Interface detection over the block pairs the CAD gave no interface for; the interfaces found
+/// are appended with ids I0, I1, ... that no given interface uses.
+void add_detected_interfaces(model::Model& m, PrepareReport& report) {
+  const auto detect_start = std::chrono::steady_clock::now();
+  std::vector<std::pair<int, int>> covered;
+  for (const auto& contact : m.interfaces) {
+    covered.emplace_back(std::min(contact.block_a, contact.block_b), std::max(contact.block_a, contact.block_b));
   }
+  DetectionOutcome outcome = detect_interfaces(m, covered);
+  std::vector<model::ContactInterface>& found = outcome.interfaces;
+  m.near_misses = std::move(outcome.near_misses);
+  m.detection_summary = outcome.summary;
+  report.detection = outcome.summary;
+  std::set<std::string> used_ids;
+  for (const auto& contact : m.interfaces) used_ids.insert(contact.id);
+  std::size_t next = 0;
+  for (auto& contact : found) {
+    do {
+      contact.id = "I" + std::to_string(next++);
+    } while (used_ids.count(contact.id));
+    m.interfaces.push_back(std::move(contact));
+  }
+  report.detect_seconds = seconds_since(detect_start);
+  report.detection_ran = true;
+}
 
-  // A free block that touches nothing can only fall; say so now rather than leave the user to
-  // puzzle over an infeasible analysis.
+/// A free block that touches nothing can only fall; say so now rather than leave the user to
+/// puzzle over an infeasible analysis.
+void warn_isolated_blocks(model::Model& m) {
   std::vector<int> contacts_per_block(m.blocks.size(), 0);
   for (const auto& contact : m.interfaces) {
     ++contacts_per_block[contact.block_a];
@@ -366,6 +383,10 @@ PrepareReport prepare_model(model::Model& m) {
                             "/blocks/" + std::to_string(i)});
     }
   }
+}
+
+/// A model kilometres or millimetres across was probably given in the wrong length unit.
+void warn_suspicious_units(model::Model& m) {
   const double diagonal = m.bounding_box().diagonal();
   if (diagonal > 1e4) {
     m.warnings.push_back({"suspicious_units", "the model is " + format(diagonal) +
@@ -374,6 +395,34 @@ PrepareReport prepare_model(model::Model& m) {
     m.warnings.push_back({"suspicious_units", "the model is only " + format(diagonal) +
                                                   " m across: check /units/length", "/units/length"});
   }
+}
+
+}  // namespace
+
+PrepareReport prepare_model(model::Model& m) {
+  PrepareReport report;
+  const auto start = std::chrono::steady_clock::now();
+  const double tolerance = m.distance_tolerance();
+  check_distance_tolerance(m);
+
+  std::vector<InputIssue> errors;
+  std::vector<WarpedFace> warped;
+  for (std::size_t i = 0; i < m.blocks.size(); ++i) {
+    prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings, warped);
+  }
+  if (!errors.empty()) throw model::ModelError(errors);
+  check_overlaps(m, tolerance, errors, m.warnings);
+  if (!errors.empty()) throw model::ModelError(errors);
+  warn_warped_faces(warped, m);
+  place_loads_without_point(m);
+  prepare_given_interfaces(m, tolerance, errors);
+  report.geometry_seconds = seconds_since(start);
+
+  const bool detect = m.detection.mode == model::DetectionMode::Merge ||
+                      (m.detection.mode == model::DetectionMode::Auto && m.interfaces.empty());
+  if (detect) add_detected_interfaces(m, report);
+  warn_isolated_blocks(m);
+  warn_suspicious_units(m);
   return report;
 }
 

@@ -4,8 +4,8 @@
 
 #include "geometry/prepare_model.hpp"
 #include "io/input_limits.hpp"
-#include "io/result_writer.hpp"
 #include "model/model.hpp"
+#include "model/stage_timings.hpp"
 
 #include <string>
 
@@ -13,7 +13,7 @@ namespace rbla::io {
 
 struct LoadedModel {
   model::Model model;
-  StageTimings timings;          // total_seconds covers this stage only
+  model::StageTimings timings;  // total_seconds covers this stage only
   geometry::PrepareReport prepare;
 };
 

@@ -129,8 +129,10 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
   }
   m.analysis_given = true;
   const json& s = doc["analysis"];
-  a.type = s.value("type", "load_multiplier") == "settlement" ? model::AnalysisType::Settlement
-                                                                : model::AnalysisType::LoadMultiplier;
+  if (s.contains("type")) {
+    a.type = s["type"].get<std::string>() == "settlement" ? model::AnalysisType::Settlement
+                                                          : model::AnalysisType::LoadMultiplier;
+  }
   bool seismic_refused = false;
   if (s.contains("seismic")) {
     const std::optional<Vec3> d = direction_of(to_vec3(s["seismic"]["direction"]));
@@ -149,20 +151,26 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
     if (!d) issues.add("/analysis/settlement/direction", "must be a non-zero vector (all three components are 0)");
     else a.settlement_direction = *d;
   }
-  a.friction_model = s.value("friction_model", "associative") == "non_associative"
-                         ? model::FrictionModel::NonAssociative
-                         : model::FrictionModel::Associative;
-  const std::string cone = s.value("cone", "exact");
-  a.pyramid_bracket = s.value("pyramid_bracket", false);
-  a.check_dead_load = s.value("check_dead_load", true);
-  a.cone = cone == "pyramid_inscribed"       ? model::ConeKind::PyramidInscribed
-           : cone == "pyramid_circumscribed" ? model::ConeKind::PyramidCircumscribed
-                                             : model::ConeKind::Exact;
-  a.pyramid_faces = s.value("pyramid_faces", 8);
-  const std::string formulation = s.value("formulation", "auto");
-  a.formulation = formulation == "3d"       ? model::Formulation::ThreeD
-                  : formulation == "planar" ? model::Formulation::Planar
-                                            : model::Formulation::Auto;
+  if (s.contains("friction_model")) {
+    a.friction_model = s["friction_model"].get<std::string>() == "non_associative"
+                           ? model::FrictionModel::NonAssociative
+                           : model::FrictionModel::Associative;
+  }
+  a.pyramid_bracket = s.value("pyramid_bracket", a.pyramid_bracket);
+  a.check_dead_load = s.value("check_dead_load", a.check_dead_load);
+  if (s.contains("cone")) {
+    const std::string cone = s["cone"].get<std::string>();
+    a.cone = cone == "pyramid_inscribed"       ? model::ConeKind::PyramidInscribed
+             : cone == "pyramid_circumscribed" ? model::ConeKind::PyramidCircumscribed
+                                               : model::ConeKind::Exact;
+  }
+  a.pyramid_faces = s.value("pyramid_faces", a.pyramid_faces);
+  if (s.contains("formulation")) {
+    const std::string formulation = s["formulation"].get<std::string>();
+    a.formulation = formulation == "3d"       ? model::Formulation::ThreeD
+                    : formulation == "planar" ? model::Formulation::Planar
+                                              : model::Formulation::Auto;
+  }
   if (s.contains("tolerances")) {
     a.tol_relative_gap = s["tolerances"].value("relative_gap", a.tol_relative_gap);
     a.tol_feasibility = s["tolerances"].value("feasibility", a.tol_feasibility);
@@ -174,7 +182,7 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
     a.non_associative_damping = na.value("damping", a.non_associative_damping);
     a.non_associative_warm_start = na.value("warm_start", a.non_associative_warm_start);
   }
-  a.time_limit_seconds = s.value("time_limit", 0.0);
+  a.time_limit_seconds = s.value("time_limit", a.time_limit_seconds);
 
   // A seismic direction that was given but refused has its own message; this one would mislead.
   if (a.type == model::AnalysisType::LoadMultiplier && !has_live && !a.seismic_direction && !seismic_refused) {
@@ -195,24 +203,25 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
 }
 
 
-/// Units, gravity, title and defaults; returns the default unit weight (file units).
+/// Units, gravity, title and defaults; returns the default unit weight (file units). What the
+/// file leaves out keeps the value model::Model starts with (the schema's defaults; a test,
+/// tests/unit/test_schema_defaults.cpp, keeps the two equal).
 double read_units_and_defaults(const json& doc, model::Model& m) {
-  m.title = doc.value("title", "");
+  m.title = doc.value("title", m.title);
   const json& units = doc["units"];
   m.units.length_name = units["length"].get<std::string>();
-  m.units.force_name = units.value("force", "kN");
-  m.units.unit_weight_name = units.value("unit_weight", "kN/m3");
+  m.units.force_name = units.value("force", m.units.force_name);
+  m.units.unit_weight_name = units.value("unit_weight", m.units.unit_weight_name);
   m.units.length_to_m = length_factor(m.units.length_name);
   m.units.force_to_kN = force_factor(m.units.force_name);
   m.units.unit_weight_to_kN_m3 = unit_weight_factor(m.units.unit_weight_name);
-  m.gravity_axis = doc.value("gravity", "-z");
+  m.gravity_axis = doc.value("gravity", m.gravity_axis);
   m.gravity = gravity_vector(m.gravity_axis);
-  double default_unit_weight = 18.0;
   if (doc.contains("defaults")) {
-    default_unit_weight = doc["defaults"].value("unit_weight", default_unit_weight);
+    m.default_unit_weight = doc["defaults"].value("unit_weight", m.default_unit_weight);
     m.default_friction = doc["defaults"].value("friction", m.default_friction);
   }
-  return default_unit_weight;
+  return m.default_unit_weight;
 }
 
 std::vector<std::vector<int>> read_faces(const json& faces, std::size_t num_vertices, const std::string& pointer,
@@ -247,11 +256,13 @@ void read_blocks(const json& blocks, double default_unit_weight, model::Model& m
     const std::string pointer = at("/blocks", i);
     model::Block block;
     block.id = b["id"].get<std::string>();
-    block.label = b.value("label", "");
-    const std::string role = b.value("role", "free");
-    block.role = role == "fixed"            ? model::BlockRole::Fixed
-                 : role == "moving_support" ? model::BlockRole::MovingSupport
-                                            : model::BlockRole::Free;
+    block.label = b.value("label", block.label);
+    if (b.contains("role")) {
+      const std::string role = b["role"].get<std::string>();
+      block.role = role == "fixed"            ? model::BlockRole::Fixed
+                   : role == "moving_support" ? model::BlockRole::MovingSupport
+                                              : model::BlockRole::Free;
+    }
     const json& vertices = b["vertices"];
     block.vertices.reserve(vertices.size());
     for (const json& v : vertices) block.vertices.push_back(to_vec3(v) * lf);
@@ -394,7 +405,7 @@ void read_interfaces(const json& list, model::Model& m, IssueList& issues) {
     const std::string pointer = at("/interfaces", i);
     model::ContactInterface contact;
     contact.id = entry.value("id", "I" + std::to_string(i));
-    contact.label = entry.value("label", "");
+    contact.label = entry.value("label", contact.label);
     contact.friction = entry.value("friction", m.default_friction);
     contact.source_index = static_cast<int>(i);
     const auto [existing, inserted] = seen.emplace(contact.id, i);
@@ -427,10 +438,12 @@ void read_interfaces(const json& list, model::Model& m, IssueList& issues) {
 }
 
 void read_detection(const json& d, model::Model& m) {
-  const std::string mode = d.value("mode", "auto");
-  m.detection.mode = mode == "off"     ? model::DetectionMode::Off
-                     : mode == "merge" ? model::DetectionMode::Merge
-                                       : model::DetectionMode::Auto;
+  if (d.contains("mode")) {
+    const std::string mode = d["mode"].get<std::string>();
+    m.detection.mode = mode == "off"     ? model::DetectionMode::Off
+                       : mode == "merge" ? model::DetectionMode::Merge
+                                         : model::DetectionMode::Auto;
+  }
   m.detection.joint_tolerance = d.value("joint_tolerance", m.detection.joint_tolerance);
   if (d.contains("relative_tolerance")) m.detection.relative_tolerance = d["relative_tolerance"].get<double>();
   if (d.contains("distance_tolerance")) {

@@ -2,24 +2,14 @@
 #pragma once
 
 #include "analysis/analysis_result.hpp"
-#include "geometry/prepare_model.hpp"
 #include "model/model.hpp"
+#include "model/stage_timings.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <string>
 
 namespace rbla::io {
-
-/// Stage times of one run, in seconds; a stage that did not run stays 0.
-struct StageTimings {
-  double read_seconds = 0.0;
-  double validate_seconds = 0.0;
-  double geometry_seconds = 0.0;
-  double detect_seconds = 0.0;
-  double write_seconds = 0.0;
-  double total_seconds = 0.0;
-};
 
 /// The `model_summary` section: counts, bounding box and total weight in the model's units.
 nlohmann::json model_summary_json(const model::Model& model);
@@ -33,10 +23,10 @@ nlohmann::json warning_summary_json(const std::vector<model::Warning>& warnings)
 
 /// A complete result for a run that stopped after the model stage (status `model_only`):
 /// no analysis, no numbers that were not computed.
-nlohmann::json model_only_result(const model::Model& model, const StageTimings& timings, const std::string& source);
+nlohmann::json model_only_result(const model::Model& model, const model::StageTimings& timings, const std::string& source);
 
 /// A complete result of an analysis, in the model's units (lengths, forces; rotations in rad).
 nlohmann::json analysis_result_json(const model::Model& model, const analysis::AnalysisResult& result,
-                                    const StageTimings& timings, const std::string& source);
+                                    const model::StageTimings& timings, const std::string& source);
 
 }  // namespace rbla::io

@@ -461,50 +461,34 @@ void append_svg_open(std::string& out, double width, double height, const std::s
   out += "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
 }
 
-}  // namespace
-
-SvgView mechanism_view(const model::Model& model, const AnalysisResult& result, const SvgOptions& options) {
-  return build_scene(model, result, options).view;
-}
-
-std::string mechanism_svg(const model::Model& model, const AnalysisResult& result, const SvgOptions& options) {
-  const Scene scene = build_scene(model, result, options);
-  const SvgView& view = scene.view;
-  const std::string title = title_text(model, result);
-
-  std::string out;
-  out.reserve(4096 + model.blocks.size() * 400);
-  append_svg_open(out, view.width, view.height, title);
-  if (!result.verdict_text.empty()) out += "<desc>" + escape(result.verdict_text) + "</desc>\n";
-  append_text(out, kMargin, 32, title, "font-size=\"20\" font-weight=\"bold\"");
-  append_text(out, kMargin, 56, subtitle_text(model, result, view), "font-size=\"13\" fill=\"#444\"");
-  append_legend(out, view.width, 84);
-
-  // Undisplaced outlines under everything, as one path: a thin reference, not a second model.
-  if (view.amplitude > 0.0) {
-    std::string d;
-    for (const model::Block& block : model.blocks) {
-      for (const std::vector<int>& face : block.faces) {
-        if (!valid_face(face, block.vertices.size())) continue;
-        const Vec3 normal = newell_normal(block.vertices, face);
-        if (normal.dot(view.toward) <= 1e-9 * normal.norm()) continue;
-        append_polygon_path(d, view, block.vertices, face);
-      }
-    }
-    if (!d.empty()) {
-      out += "<path fill=\"none\" stroke=\"" + std::string(kGhostColour) +
-             "\" stroke-width=\"0.6\" stroke-linejoin=\"round\" d=\"" + d + "\"/>\n";
+/// Undisplaced outlines under everything, as one path: a thin reference, not a second model.
+void append_ghost_outlines(std::string& out, const model::Model& model, const SvgView& view) {
+  if (!(view.amplitude > 0.0)) return;
+  std::string d;
+  for (const model::Block& block : model.blocks) {
+    for (const std::vector<int>& face : block.faces) {
+      if (!valid_face(face, block.vertices.size())) continue;
+      const Vec3 normal = newell_normal(block.vertices, face);
+      if (normal.dot(view.toward) <= 1e-9 * normal.norm()) continue;
+      append_polygon_path(d, view, block.vertices, face);
     }
   }
+  if (!d.empty()) {
+    out += "<path fill=\"none\" stroke=\"" + std::string(kGhostColour) +
+           "\" stroke-width=\"0.6\" stroke-linejoin=\"round\" d=\"" + d + "\"/>\n";
+  }
+}
 
-  // Painter's algorithm over front faces only: with back faces culled, sorting by mean depth is
-  // right for convex blocks that do not interpenetrate, which is what a rigid-block model is.
-  struct FaceToDraw {
-    double depth;
-    std::size_t block;
-    std::size_t face;
-    double facing;  // cosine between the face normal and the direction to the viewer
-  };
+struct FaceToDraw {
+  double depth;
+  std::size_t block;
+  std::size_t face;
+  double facing;  // cosine between the face normal and the direction to the viewer
+};
+
+/// The displaced blocks' faces that face the viewer, farthest first.
+std::vector<FaceToDraw> front_faces_back_to_front(const model::Model& model, const Scene& scene) {
+  const SvgView& view = scene.view;
   std::vector<FaceToDraw> faces;
   for (std::size_t b = 0; b < model.blocks.size(); ++b) {
     const model::Block& block = model.blocks[b];
@@ -523,19 +507,27 @@ std::string mechanism_svg(const model::Model& model, const AnalysisResult& resul
   }
   std::stable_sort(faces.begin(), faces.end(),
                    [](const FaceToDraw& a, const FaceToDraw& b) { return a.depth < b.depth; });
+  return faces;
+}
+
+/// Painter's algorithm over front faces only: with back faces culled, sorting by mean depth is
+/// right for convex blocks that do not interpenetrate, which is what a rigid-block model is.
+void append_blocks(std::string& out, const model::Model& model, const AnalysisResult& result, const Scene& scene) {
   out += "<g stroke=\"#333333\" stroke-width=\"0.6\" stroke-linejoin=\"round\">\n";
-  for (const FaceToDraw& item : faces) {
+  for (const FaceToDraw& item : front_faces_back_to_front(model, scene)) {
     const model::Block& block = model.blocks[item.block];
     const BlockMotion* motion = motion_of(result, item.block);
     const int rgb = block.is_support() ? kSupportRgb : (motion && motion->moving ? kMovingRgb : kRestingRgb);
     out += "<path fill=\"" + shaded(rgb, 0.7 + 0.3 * item.facing) + "\" d=\"";
-    append_polygon_path(out, view, scene.displaced[item.block], block.faces[item.face]);
+    append_polygon_path(out, scene.view, scene.displaced[item.block], block.faces[item.face]);
     out += "\"><title>" + escape(block.id) + "</title></path>\n";
   }
   out += "</g>\n";
+}
 
-  // Cracked interfaces on top so hinges show even where a block face would hide them; moved
-  // with block_a, whose face they lie on.
+/// Cracked interfaces on top so hinges show even where a block face would hide them; moved
+/// with block_a, whose face they lie on.
+void append_cracks(std::string& out, const model::Model& model, const AnalysisResult& result, const Scene& scene) {
   std::string cracks;
   for (int index : result.mechanism.cracked_interfaces) {
     if (index < 0 || static_cast<std::size_t>(index) >= model.interfaces.size()) continue;
@@ -551,13 +543,36 @@ std::string mechanism_svg(const model::Model& model, const AnalysisResult& resul
     cracks += "<path stroke=\"" + std::string(colour) + "\" fill=\"" + colour + "\" d=\"";
     for (std::size_t i = 0; i < contact.polygon.size(); ++i) {
       cracks += i == 0 ? 'M' : 'L';
-      append_point(cracks, view, motion.apply(contact.polygon[i]));
+      append_point(cracks, scene.view, motion.apply(contact.polygon[i]));
     }
     cracks += "Z\"><title>" + escape(contact.id) + ": " + state_words(state) + "</title></path>\n";
   }
   if (!cracks.empty()) {
     out += "<g stroke-width=\"3\" fill-opacity=\"0.3\" stroke-linejoin=\"round\">\n" + cracks + "</g>\n";
   }
+}
+
+}  // namespace
+
+SvgView mechanism_view(const model::Model& model, const AnalysisResult& result, const SvgOptions& options) {
+  return build_scene(model, result, options).view;
+}
+
+std::string mechanism_svg(const model::Model& model, const AnalysisResult& result, const SvgOptions& options) {
+  const Scene scene = build_scene(model, result, options);
+  const SvgView& view = scene.view;
+  const std::string title = title_text(model, result);
+
+  std::string out;
+  out.reserve(4096 + model.blocks.size() * 400);
+  append_svg_open(out, view.width, view.height, title);
+  if (!result.verdict_text.empty()) out += "<desc>" + escape(result.verdict_text) + "</desc>\n";
+  append_text(out, kMargin, 32, title, "font-size=\"20\" font-weight=\"bold\"");
+  append_text(out, kMargin, 56, subtitle_text(model, result, view), "font-size=\"13\" fill=\"#444\"");
+  append_legend(out, view.width, 84);
+  append_ghost_outlines(out, model, view);
+  append_blocks(out, model, result, scene);
+  append_cracks(out, model, result, scene);
   out += "</svg>\n";
   return out;
 }
@@ -714,63 +729,40 @@ void append_non_associative_panel(std::string& out, const AnalysisResult& result
   out += polyline + "\"/>\n" + markers + "</g>\n";
 }
 
-void append_interior_point_panel(std::string& out, const AnalysisResult& result, const PlotArea& area) {
-  append_text(out, area.left, area.top - 12, "Interior-point iterations (last conic solve)",
-              "font-size=\"14\" font-weight=\"bold\"");
-  append_frame(out, area);
-  const auto& history = result.interior_point_history;
-  if (history.empty()) {
-    append_note(out, area, "no interior-point iterations recorded");
-    return;
-  }
+/// One curve of the interior-point panel: a column of the iteration log.
+struct IterationSeries {
+  const char* name;
+  const char* colour;
+  double conic::IterationRow::*field;
+};
+const IterationSeries kIterationSeries[3] = {{"relative gap", "#1f77b4", &conic::IterationRow::gap_rel},
+                                             {"primal residual", "#d62728", &conic::IterationRow::res_primal},
+                                             {"dual residual", "#2ca02c", &conic::IterationRow::res_dual}};
+
+/// log10 of a value, with what cannot be drawn on a log axis (<= 1e-16, including 0) at the
+/// floor; false for NaN or +inf, which are left out.
+bool log_value(double v, double& out_log) {
   constexpr double kFloor = 1e-16;
-  struct Series {
-    const char* name;
-    const char* colour;
-    double conic::IterationRow::*field;
-  };
-  const Series series[3] = {{"relative gap", "#1f77b4", &conic::IterationRow::gap_rel},
-                            {"primal residual", "#d62728", &conic::IterationRow::res_primal},
-                            {"dual residual", "#2ca02c", &conic::IterationRow::res_dual}};
-  // log10 of a value, with what cannot be drawn on a log axis (<= 1e-16, including 0) at the
-  // floor and NaN or +inf left out.
-  auto log_value = [&](double v, double& out_log) {
-    if (std::isnan(v) || v == std::numeric_limits<double>::infinity()) return false;
-    out_log = std::log10(std::max(v, kFloor));
-    return true;
-  };
-  Range xs{static_cast<double>(history.front().iteration), static_cast<double>(history.front().iteration)};
-  double log_lo = std::numeric_limits<double>::infinity(), log_hi = -log_lo;
-  for (const conic::IterationRow& row : history) {
-    xs.lo = std::min(xs.lo, static_cast<double>(row.iteration));
-    xs.hi = std::max(xs.hi, static_cast<double>(row.iteration));
-    for (const Series& s : series) {
-      double l;
-      if (log_value(row.*(s.field), l)) {
-        log_lo = std::min(log_lo, l);
-        log_hi = std::max(log_hi, l);
-      }
-    }
-  }
-  if (!(log_lo <= log_hi)) {
-    append_note(out, area, "no finite values to plot");
-    return;
-  }
+  if (std::isnan(v) || v == std::numeric_limits<double>::infinity()) return false;
+  out_log = std::log10(std::max(v, kFloor));
+  return true;
+}
+
+/// Decades from below the lowest to above the highest log value, at most about 8 gridlines:
+/// the range of the log axis and the step between its labelled decades.
+Range decade_range(double log_lo, double log_hi, int& decade_step) {
   int decade_lo = static_cast<int>(std::floor(log_lo + 1e-9));
   int decade_hi = static_cast<int>(std::ceil(log_hi - 1e-9));
   if (decade_hi <= decade_lo) decade_hi = decade_lo + 1;
-  const int decade_step = std::max(1, (decade_hi - decade_lo + 7) / 8);
+  decade_step = std::max(1, (decade_hi - decade_lo + 7) / 8);
   decade_lo = static_cast<int>(std::floor(static_cast<double>(decade_lo) / decade_step)) * decade_step;
   decade_hi = static_cast<int>(std::ceil(static_cast<double>(decade_hi) / decade_step)) * decade_step;
-  Range ys{static_cast<double>(decade_lo), static_cast<double>(decade_hi)};
-  for (int d = decade_lo; d <= decade_hi; d += decade_step) {
-    append_horizontal_grid(out, area, ys.map(d, area.bottom, area.top), power_of_ten_label(d));
-  }
-  const std::vector<double> x_ticks = nice_ticks(xs, std::min(8, std::max(1, static_cast<int>(history.size()) - 1)));
-  append_x_ticks(out, area, xs, x_ticks);
-  append_axis_labels(out, area, "interior-point iteration", "relative gap, residuals (log scale)");
+  return Range{static_cast<double>(decade_lo), static_cast<double>(decade_hi)};
+}
 
-  for (const Series& s : series) {
+void append_iteration_curves(std::string& out, const std::vector<conic::IterationRow>& history, const PlotArea& area,
+                             const Range& xs, const Range& ys) {
+  for (const IterationSeries& s : kIterationSeries) {
     std::string points;
     for (const conic::IterationRow& row : history) {
       double l;
@@ -782,18 +774,59 @@ void append_interior_point_panel(std::string& out, const AnalysisResult& result,
     out += "<polyline fill=\"none\" stroke=\"" + std::string(s.colour) + "\" stroke-width=\"1.8\" points=\"" + points +
            "\"><title>" + s.name + "</title></polyline>\n";
   }
-  // Legend in the top right corner, where residuals have usually fallen away from.
+}
+
+/// Legend in the top right corner, where residuals have usually fallen away from.
+void append_iteration_legend(std::string& out, const PlotArea& area) {
   out += "<g font-size=\"12\">\n";
   out += "<rect x=\"" + coordinate(area.right - 150) + "\" y=\"" + coordinate(area.top + 6) +
          "\" width=\"144\" height=\"62\" fill=\"#ffffff\" fill-opacity=\"0.85\" stroke=\"#cccccc\"/>\n";
   for (int i = 0; i < 3; ++i) {
     const double y = area.top + 22 + 18 * i;
     out += "<line x1=\"" + coordinate(area.right - 142) + "\" y1=\"" + coordinate(y - 4) + "\" x2=\"" +
-           coordinate(area.right - 120) + "\" y2=\"" + coordinate(y - 4) + "\" stroke=\"" + series[i].colour +
+           coordinate(area.right - 120) + "\" y2=\"" + coordinate(y - 4) + "\" stroke=\"" + kIterationSeries[i].colour +
            "\" stroke-width=\"2\"/>\n";
-    append_text(out, area.right - 114, y, series[i].name, "");
+    append_text(out, area.right - 114, y, kIterationSeries[i].name, "");
   }
   out += "</g>\n";
+}
+
+void append_interior_point_panel(std::string& out, const AnalysisResult& result, const PlotArea& area) {
+  append_text(out, area.left, area.top - 12, "Interior-point iterations (last conic solve)",
+              "font-size=\"14\" font-weight=\"bold\"");
+  append_frame(out, area);
+  const auto& history = result.interior_point_history;
+  if (history.empty()) {
+    append_note(out, area, "no interior-point iterations recorded");
+    return;
+  }
+  Range xs{static_cast<double>(history.front().iteration), static_cast<double>(history.front().iteration)};
+  double log_lo = std::numeric_limits<double>::infinity(), log_hi = -log_lo;
+  for (const conic::IterationRow& row : history) {
+    xs.lo = std::min(xs.lo, static_cast<double>(row.iteration));
+    xs.hi = std::max(xs.hi, static_cast<double>(row.iteration));
+    for (const IterationSeries& s : kIterationSeries) {
+      double l;
+      if (log_value(row.*(s.field), l)) {
+        log_lo = std::min(log_lo, l);
+        log_hi = std::max(log_hi, l);
+      }
+    }
+  }
+  if (!(log_lo <= log_hi)) {
+    append_note(out, area, "no finite values to plot");
+    return;
+  }
+  int decade_step = 1;
+  const Range ys = decade_range(log_lo, log_hi, decade_step);
+  for (int d = static_cast<int>(ys.lo); d <= static_cast<int>(ys.hi); d += decade_step) {
+    append_horizontal_grid(out, area, ys.map(d, area.bottom, area.top), power_of_ten_label(d));
+  }
+  const std::vector<double> x_ticks = nice_ticks(xs, std::min(8, std::max(1, static_cast<int>(history.size()) - 1)));
+  append_x_ticks(out, area, xs, x_ticks);
+  append_axis_labels(out, area, "interior-point iteration", "relative gap, residuals (log scale)");
+  append_iteration_curves(out, history, area, xs, ys);
+  append_iteration_legend(out, area);
 }
 
 }  // namespace

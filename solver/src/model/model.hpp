@@ -117,8 +117,8 @@ struct AnalysisRequest {
 
 enum class DetectionMode { Auto, Off, Merge };
 
-/// Interface detection settings (schema: `detection`; the schema's defaults are these, a test
-/// keeps the two equal). By default every joint gets its own distance tolerance,
+/// Interface detection settings (schema: `detection`; the schema's defaults are these,
+/// tests/unit/test_schema_defaults.cpp keeps the two equal). By default every joint gets its own distance tolerance,
 /// `joint_tolerance` times the size of its smaller face, so that what counts as touching follows
 /// the blocks, not the size of the model; `distance_tolerance` or `relative_tolerance` replace
 /// that by one tolerance for every joint.
@@ -206,6 +206,10 @@ struct Model {
   Units units;
   Vec3 gravity = -Vec3::UnitZ();  // unit vector
   std::string gravity_axis = "-z";
+  /// The model's `defaults` (the schema's defaults are these initialisers and those of the other
+  /// structs here; tests/unit/test_schema_defaults.cpp keeps the two equal). The unit weight is
+  /// in the file's unit-weight unit (units.unit_weight_name), as the file gives it.
+  double default_unit_weight = 18.0;
   double default_friction = 0.6;
   std::vector<Block> blocks;
   std::vector<ContactInterface> interfaces;

@@ -1,7 +1,7 @@
 // Limit-analysis-shaped problems (tests/unit/conic/wall_problem.hpp): a running-bond wall on a
 // fixed base under a horizontal load α W_i on every block.
 //
-// Oracle (METHOD.md, "A free exact oracle"): for an in-plane load on a wall symmetric about its
+// Oracle (docs/method.md, "An exact check for in-plane loads"): for an in-plane load on a wall symmetric about its
 // mid-plane, some optimum has no out-of-plane friction, so the axis-aligned 4-sided pyramid LP
 // gives the exact α of the cone problem. The LP is also dumped to MPS and solved by Clp.
 #include <gtest/gtest.h>
