@@ -1,0 +1,80 @@
+// `rbla solve`: one analysis of the model as it asks.
+#include "commands.hpp"
+
+#include "analysis/limit_analysis.hpp"
+#include "io/problem_file.hpp"
+#include "io/svg_writer.hpp"
+
+#include <iostream>
+
+namespace rbla::cli {
+namespace {
+
+int run_solve(const CommonOptions& options) {
+  const auto start = Clock::now();
+  const bool stdout_taken = check_paths(options);
+  io::LoadedModel loaded;
+  int exit_code = kSuccess;
+  if (!load(options, loaded, exit_code)) return exit_code;
+  const model::Model& m = loaded.model;
+
+  analysis::AnalysisOptions analysis_options;
+  analysis_options.log = options.verbose ? &std::cerr : nullptr;
+  if (!options.dump_problem_path.empty()) {
+    analysis_options.problem_ready = [&](const conic::ConicProblem& problem) {
+      io::write_problem_file(options.dump_problem_path, problem);
+    };
+  }
+  analysis_options.threads = options.threads;
+  progress(options, std::string("analysis: ") + model::to_string(m.analysis.type) + ", " +
+                        model::to_string(m.analysis.friction_model) + " friction, cone " +
+                        model::to_string(m.analysis.cone));
+  analysis::AnalysisResult result;
+  try {
+    result = analysis::analyse(m, analysis_options);
+  } catch (const model::ModelError& error) {
+    return report_invalid(error);
+  } catch (const conic::ConicSetupError& error) {
+    std::cerr << "rbla: conic problem: " << error.what() << "\n";
+    return kSolverFailure;
+  }
+  report_warnings(result.warnings, options);
+  if (result.solver_ran) {
+    progress(options, "solved in " + seconds_text(result.solve_seconds) + " (" +
+                          std::to_string(result.solver_info.iterations) + " interior-point iterations" +
+                          (result.non_associative.empty()
+                               ? std::string()
+                               : ", " + std::to_string(result.non_associative.size()) + " non-associative steps") +
+                          "; assembly " + seconds_text(result.assemble_seconds) + ")");
+  } else {
+    progress(options, "no solve ran (assembly " + seconds_text(result.assemble_seconds) + ")");
+  }
+  (stdout_taken ? std::cerr : std::cout) << shown(result.verdict_text) << "\n";
+
+  ExtraOutput extra;
+  extra.picture = [&result] { return io::convergence_svg(result); };
+  const int code = write_analysis_outputs(options, m, result, loaded.timings, start, extra);
+  return code != kSuccess ? code : exit_code_of(result.verdict);
+}
+
+}  // namespace
+
+Command add_solve(CLI::App& app, CommonOptions& options) {
+  CLI::App* solve = app.add_subcommand("solve", "Analyse a model and write the result JSON");
+  solve->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
+  solve->add_option("-o,--output", options.output_path, "Result JSON file ('-' for standard output)");
+  solve->add_option("--svg", options.svg_dir, "Folder for the mechanism and convergence SVG pictures");
+  solve->add_option("--dump-problem", options.dump_problem_path,
+                    "Write the conic problem for other solvers: CBF, or free MPS when the name ends in .mps (LP only)");
+  solve->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+  solve->add_flag("-v,--verbose", options.verbose,
+                  "Interior-point iteration log and every warning on its own line on standard error");
+  solve->add_option("--threads", options.threads,
+                    "Threads per conic solve: 2 (default) splits large problems over two cores, 1 keeps to one")
+      ->check(CLI::Range(1, 2));
+  add_input_limits(solve, options.limits);
+
+  return {solve, [&options] { return run_solve(options); }};
+}
+
+}  // namespace rbla::cli
