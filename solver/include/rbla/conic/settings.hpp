@@ -44,8 +44,9 @@ struct Settings {
   // fallback above. Info::certificate_residual and Info::failure_reason then say so.
   double reduced_tol_infeas = 1e-5;
 
-  /// Interior-point iterations. The church façade's planar settlement LP needs 19 iterations at
-  /// 313 blocks and ~100 at 30716 (degenerate problems converge slowly near the end).
+  /// Interior-point iterations. Degenerate problems (large planar settlement LPs) converge
+  /// slowly near the end and need several times the iterations of small ones
+  /// (docs/benchmark/measurements.md).
   int max_iter = 200;
   /// Start from the least-squares point (CVXOPT's and ECOS's default: min ‖x‖ s.t. Ax = b, min ‖z‖
   /// s.t. Aᵀy + z = c, shifted into the cone) instead of x = z = e; costs one factorisation.
@@ -109,12 +110,11 @@ struct Settings {
   double memory_limit_bytes = 0.0;
   /// OpenBLAS threads in the numeric factorisations; 0 keeps the library's own setting (usually
   /// one per core). Everything else in a solve (triangular solves, products) runs on one BLAS
-  /// thread (see detail::BlasThreads). Restored after the solve. One thread by default: on this
-  /// project's two-core machines a second one never paid for its hand-overs. 1920-block façade,
-  /// seismic 3-D, 29 factorisations: 0.93 s with 2 threads, 0.74 s with 1; 8051-block 3-D
-  /// façade: 0.200 s against 0.178 s per factorisation, and 10.7 s against 0.95 s of system
-  /// time in the whole solve (idle threads spinning). One thread also makes runs repeatable:
-  /// with two, the blocked sums' order varied and so did the iteration count (48 or 52).
+  /// thread (see detail::BlasThreads). Restored after the solve. One thread by default: the
+  /// factors here are many small supernodes, where a second BLAS thread costs more in hand-overs
+  /// and idle spinning than it gains (measurements: docs/benchmark/measurements.md). One thread
+  /// also makes runs repeatable: with more, the order of blocked sums varies between runs, and
+  /// with it the iteration count.
   int blas_threads = 1;
   /// Threads for the normal equations, 1 or 2 (read at construction). With 2, a normal matrix
   /// of at least split_min_rows rows is split by a node separator into two domains that are
