@@ -145,6 +145,12 @@ class AdapterTest(unittest.TestCase):
         self.assertEqual(out["states"], ["hinge"])
         t = out["transforms"][1]
         self.assertEqual((t.M00, t.M03, t.M33), (1.0, 0.0, 1.0))
+        # The search components' helpers: the same block tips at 0.5 along its edge normals.
+        text, res, log = self.gh.worst_direction(json.dumps(model), exe=EXE)
+        self.assertAlmostEqual(res.data["worst_direction"]["load_multiplier"], 0.5, places=6)
+        self.assertEqual(json.loads(text)["worst_direction"]["certified"], True)
+        text, res, log = self.gh.critical_friction(json.dumps(model), exe=EXE, target_alpha=0.3)
+        self.assertEqual(res.data["critical_friction"]["outcome"], "bracketed")
         labels, colours, hexes, keys = self.gh.legend()
         self.assertEqual(len(labels), 8)
         self.assertEqual(hexes[1], "#d62728")

@@ -84,7 +84,8 @@ class ComponentTest(unittest.TestCase):
     def test_metadata_matches_code(self):
         gh = os.path.join(RHINO, "grasshopper")
         comps = sorted(d for d in os.listdir(gh) if os.path.isdir(os.path.join(gh, d)))
-        self.assertEqual(comps, ["RblaLegend", "RblaMechanism", "RblaModel", "RblaSolve"])
+        self.assertEqual(comps, ["RblaCriticalFriction", "RblaLegend", "RblaMechanism", "RblaModel", "RblaSolve",
+                                 "RblaWorstDirection"])
         for c in comps:
             with open(os.path.join(gh, c, "metadata.json")) as f:
                 meta = json.load(f)

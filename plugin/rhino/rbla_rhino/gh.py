@@ -114,7 +114,24 @@ def _add_interface(mb, i, geometry, pair, label, tol, issues):
 def solve(model_text, run=True, exe=None, timeout=None):
     """(result JSON text, Result, log lines). Cached by model text so toggling 'run' or
     re-solving an unchanged model does not start the solver again. Esc cancels."""
-    key = hashlib.sha1((model_text or "").encode("utf-8")).hexdigest()
+    return _run("solve", model_text, run, exe, timeout, {})
+
+
+def worst_direction(model_text, run=True, exe=None, timeout=None, tolerance=None):
+    """As solve(), with ``rbla worst-direction``: the result is the analysis along the weakest
+    horizontal direction; result.data["worst_direction"] holds the search."""
+    return _run("worst_direction", model_text, run, exe, timeout, {"tolerance": tolerance or None})
+
+
+def critical_friction(model_text, run=True, exe=None, timeout=None, target_alpha=None):
+    """As solve(), with ``rbla critical-friction``: the result is the analysis at the critical
+    friction; result.data["critical_friction"] holds the search."""
+    return _run("critical_friction", model_text, run, exe, timeout, {"target_alpha": target_alpha})
+
+
+def _run(command, model_text, run, exe, timeout, options):
+    key = hashlib.sha1(json.dumps([command, model_text or "", options], sort_keys=True)
+                       .encode("utf-8")).hexdigest()
     if key in _cache:
         return _cache[key]
     if not run:
@@ -130,8 +147,8 @@ def solve(model_text, run=True, exe=None, timeout=None):
         if ev.kind in ("stage", "warning"):
             log.append(ev.text)
     runner = rrun.Runner(exe or None, timeout=timeout or None)
-    outcome = runner.solve(json.loads(model_text), progress=progress, cancel=cancel,
-                           verbose=False)
+    outcome = getattr(runner, command)(json.loads(model_text), progress=progress, cancel=cancel,
+                                       verbose=False, **options)
     text = json.dumps(outcome.result.data)
     _cache.clear()
     _cache[key] = (text, outcome.result, log)
