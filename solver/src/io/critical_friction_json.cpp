@@ -1,7 +1,8 @@
 #include "io/critical_friction_json.hpp"
 
+#include "io/number_text.hpp"
+
 #include <algorithm>
-#include <cstdio>
 
 namespace rbla::io {
 namespace {
@@ -24,11 +25,7 @@ json evaluation_json(const analysis::FrictionEvaluation& e) {
   return out;
 }
 
-std::string number(double value, const char* format = "%.1f") {
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
+std::string number(double value, const char* format = "%.1f") { return number_text(value, format); }
 
 /// Plot area of the alpha(mu) picture: x (friction or factor) from 0 to x_max, alpha from 0 to y_max.
 struct Axes {

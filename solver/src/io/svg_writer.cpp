@@ -1,5 +1,7 @@
 #include "io/svg_writer.hpp"
 
+#include "io/number_text.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -56,11 +58,7 @@ std::string escape(const std::string& text) {
   return out;
 }
 
-std::string printf_string(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
+std::string printf_string(const char* format, double value) { return number_text(value, format); }
 
 std::string fixed(double value, int decimals) {
   char buffer[64];

@@ -1,5 +1,7 @@
 #include "io/sweep_io.hpp"
 
+#include "io/number_text.hpp"
+
 #include "model/errors.hpp"
 
 #include <algorithm>
@@ -39,11 +41,7 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-std::string number(double value, const char* format = "%.1f") {
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
+std::string number(double value, const char* format = "%.1f") { return number_text(value, format); }
 
 std::string quoted(const std::string& word) {
   std::string out = "'";

@@ -1,8 +1,9 @@
 #include "io/worst_direction_json.hpp"
 
+#include "io/number_text.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -52,11 +53,7 @@ json worst_direction_json(const analysis::WorstDirection& w, double tolerance) {
 
 namespace {
 
-std::string number(double value, const char* format = "%.1f") {
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
+std::string number(double value, const char* format = "%.1f") { return number_text(value, format); }
 
 struct Page {
   double x = 0.0, y = 0.0;
