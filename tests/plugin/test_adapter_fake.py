@@ -3,6 +3,7 @@ document by User Text, write the model, draw a solved result on layers (undoable
 and the Grasshopper helpers. Checks our logic, not RhinoCommon."""
 
 import json
+import sys
 import unittest
 
 import _support
@@ -151,6 +152,25 @@ class AdapterTest(unittest.TestCase):
         self.assertEqual(json.loads(text)["worst_direction"]["certified"], True)
         text, res, log = self.gh.critical_friction(json.dumps(model), exe=EXE, target_alpha=0.3)
         self.assertEqual(res.data["critical_friction"]["outcome"], "bracketed")
+        # Errors reach the component as runtime messages (a stand-in Grasshopper module here).
+        import types
+        levels = types.SimpleNamespace(Warning="warning", Error="error")
+        fake_gh = types.SimpleNamespace(Kernel=types.SimpleNamespace(GH_RuntimeMessageLevel=levels))
+        messages = []
+        component = types.SimpleNamespace(AddRuntimeMessage=lambda level, text: messages.append((level, text)))
+        saved = sys.modules.get("Grasshopper")
+        sys.modules["Grasshopper"] = fake_gh
+        try:
+            from rbla_cad import runner as rrun
+            lines = self.gh.report_error(component, rrun.CancelledError("cancelled\nby Esc"))
+            self.gh.report_error(component, rrun.SolverFailureError("failed", 3, ""))
+        finally:
+            if saved is None:
+                del sys.modules["Grasshopper"]
+            else:
+                sys.modules["Grasshopper"] = saved
+        self.assertEqual(lines, ["cancelled", "by Esc"])
+        self.assertEqual([level for level, _ in messages], ["warning", "error"])
         labels, colours, hexes, keys = self.gh.legend()
         self.assertEqual(len(labels), 8)
         self.assertEqual(hexes[1], "#d62728")

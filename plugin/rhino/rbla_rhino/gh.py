@@ -155,6 +155,16 @@ def _run(command, model_text, run, exe, timeout, options):
     return _cache[key]
 
 
+def report_error(component, error):
+    """Show a solver error on a component (a warning when cancelled, an error otherwise) and
+    return its lines for the component's log output."""
+    import Grasshopper
+    level = Grasshopper.Kernel.GH_RuntimeMessageLevel
+    component.AddRuntimeMessage(
+        level.Warning if isinstance(error, rrun.CancelledError) else level.Error, str(error))
+    return str(error).splitlines()
+
+
 def mechanism(model_text, result_text, amplitude=None, screw=False, show_closed=False):
     """Display geometry: dict of lists (blocks, block_colours, contacts, contact_colours,
     outlines, states, transforms, dot_points, dot_texts) and the amplitude used."""

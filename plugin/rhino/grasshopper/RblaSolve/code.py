@@ -32,7 +32,4 @@ if model:
                 ghenv.Component.AddRuntimeMessage(
                     Grasshopper.Kernel.GH_RuntimeMessageLevel.Remark, w.get("message", ""))
     except runner.RblaError as e:
-        log = str(e).splitlines()
-        level = Grasshopper.Kernel.GH_RuntimeMessageLevel
-        ghenv.Component.AddRuntimeMessage(
-            level.Warning if isinstance(e, runner.CancelledError) else level.Error, str(e))
+        log = gh.report_error(ghenv.Component, e)

@@ -10,8 +10,6 @@ for _p in filter(None, [os.environ.get("RBLA_PLUGIN_DIR")]):
         if _q not in sys.path:
             sys.path.insert(0, _q)
 
-import Grasshopper
-
 from rbla_cad import runner
 from rbla_rhino import gh
 
@@ -35,7 +33,4 @@ if model:
             lower_bound = search.get("lower_bound")
             ghenv.Component.Message = "alpha %.4g at %.1f deg" % (alpha, angle) if alpha is not None else res.status
     except runner.RblaError as e:
-        log = str(e).splitlines()
-        level = Grasshopper.Kernel.GH_RuntimeMessageLevel
-        ghenv.Component.AddRuntimeMessage(
-            level.Warning if isinstance(e, runner.CancelledError) else level.Error, str(e))
+        log = gh.report_error(ghenv.Component, e)
