@@ -466,7 +466,7 @@ class ModelBuilder(object):
                      time_limit=None, relative_gap=None, feasibility=None,
                      non_associative=None):
         """Solver settings (see the schema's ``analysis``); None leaves a setting at its default.
-        non_associative: dict with max_iterations, tolerance, damping."""
+        non_associative: dict with max_iterations, tolerance, damping, trajectories."""
         a = self.analysis
         if friction_model is not None:
             a["friction_model"] = _choice(friction_model, FRICTION_MODELS, "friction model",
@@ -506,6 +506,9 @@ class ModelBuilder(object):
                 elif key == "damping":
                     na[key] = _number(val, key, "/analysis/non_associative/" + key,
                                       exclusive_minimum=0, maximum=1)
+                elif key == "trajectories":
+                    na[key] = int(_number(val, key, "/analysis/non_associative/" + key,
+                                          minimum=1, maximum=6))
                 else:
                     raise ModelError("unknown non-associative setting %r" % (key,),
                                      pointer="/analysis/non_associative")

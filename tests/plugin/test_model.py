@@ -123,12 +123,15 @@ class BuildTest(unittest.TestCase):
         mb.set_settlement(moving=["R"], direction=[0, 0, -1])
         mb.set_analysis(friction_model="non_associative", cone="pyramid_inscribed",
                         pyramid_faces=8, formulation="3d", time_limit=10,
-                        non_associative={"max_iterations": 20, "damping": 0.5})
+                        non_associative={"max_iterations": 20, "damping": 0.5, "trajectories": 3})
         doc = mb.to_dict()
         self.assertEqual(doc["blocks"][1]["role"], "moving_support")
         self.assertEqual(doc["analysis"]["type"], "settlement")
         self.assertEqual(doc["analysis"]["settlement"]["direction"], [0.0, 0.0, -1.0])
         self.assertEqual(doc["analysis"]["non_associative"]["max_iterations"], 20)
+        self.assertEqual(doc["analysis"]["non_associative"]["trajectories"], 3)
+        with self.assertRaises(ModelError):
+            mb.set_analysis(non_associative={"trajectories": 7})
         mb2 = column_builder()
         mb2.add_live_load("B2", force=[1, 0, 0], point=[0.25, 0.25, 1.5])
         mb2.add_dead_load("B1", force=[0, 0, -2])

@@ -162,5 +162,69 @@ TEST(NonAssociative, StoppedEarlySaysSoAndStaysAdmissible) {
   EXPECT_LE(alpha_of(n), alpha_of(a) * (1.0 + 1e-7));
 }
 
+
+// With several runs (analysis.non_associative.trajectories) the reported state is the
+// conservative certified one: no certified run found a lower alpha (settlement: a higher R); the
+// first run is the single run of the defaults; every run's value respects the associative bound;
+// the warning about differing states appears exactly when the certified values differ by more
+// than the test's tolerance.
+TEST(NonAssociative, TrajectoriesReportTheConservativeCertifiedState) {
+  struct Named {
+    std::string name;
+    json model;
+  };
+  Case s30;
+  s30.seismic_direction = json::array({std::cos(M_PI / 6), std::sin(M_PI / 6), 0.0});
+  const std::vector<Named> cases = {{"running-bond wall", finish(running_bond_blocks(6, 10), Case{})},
+                                    {"running-bond wall 30 deg", finish(running_bond_blocks(6, 5), s30)},
+                                    {"settling block", settling_block(1.0)}};
+  for (const auto& [name, model] : cases) {
+    SCOPED_TRACE(name);
+    json associative = model;
+    associative["analysis"]["friction_model"] = "associative";
+    const auto a = run(associative);
+    const auto one = run(at_defaults(model));
+    json several = at_defaults(model);
+    several["analysis"]["non_associative"] = {{"trajectories", 6}};
+    const auto n = run(several);
+    ASSERT_EQ(n.verdict, Verdict::Collapse) << n.verdict_text;
+    ASSERT_EQ(n.non_associative_trajectories.size(), 6u);
+    const bool settlement = a.base_reaction.has_value();
+    auto value_of = [&](const AnalysisResult& r) { return settlement ? *r.base_reaction : *r.load_multiplier; };
+    const double reported = value_of(n), associative_value = value_of(a);
+    const auto& runs = n.non_associative_trajectories;
+    EXPECT_EQ(runs[n.non_associative_reported].value, reported);
+    EXPECT_TRUE(runs[n.non_associative_reported].converged);
+    EXPECT_LT(relative_error(runs[0].value, value_of(one)), 1e-9) << "the first run is the default single run";
+    double low = reported, high = reported;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      SCOPED_TRACE("run " + std::to_string(k + 1) + ", value " + std::to_string(runs[k].value));
+      if (settlement) EXPECT_GE(runs[k].value, associative_value * (1.0 - 1e-7));
+      else EXPECT_LE(runs[k].value, associative_value * (1.0 + 1e-7));
+      if (!runs[k].converged) continue;
+      if (settlement) EXPECT_LE(runs[k].value, reported);
+      else EXPECT_GE(runs[k].value, reported);
+      low = std::min(low, runs[k].value);
+      high = std::max(high, runs[k].value);
+    }
+    const bool differ = high - low > 1e-3 * reported;
+    EXPECT_EQ(differ, std::any_of(n.warnings.begin(), n.warnings.end(),
+                                  [](const auto& w) { return w.code == "non_associative_states_differ"; }));
+    EXPECT_LT(n.work.relative_error, 1e-3);
+  }
+}
+
+// On this wall the six runs certify states from 0.51282 to 0.51398 and a later run than the first
+// finds the lowest: the selection itself is exercised, not only the first run.
+TEST(NonAssociative, ALaterRunCanBeTheOneReported) {
+  json model = at_defaults(finish(running_bond_blocks(6, 10), Case{}));
+  model["analysis"]["non_associative"] = {{"trajectories", 6}};
+  const auto n = run(model);
+  ASSERT_EQ(n.verdict, Verdict::Collapse) << n.verdict_text;
+  ASSERT_EQ(n.non_associative_trajectories.size(), 6u);
+  EXPECT_GT(n.non_associative_reported, 0);
+  EXPECT_LT(*n.load_multiplier, n.non_associative_trajectories[0].value * (1.0 - 1e-3));
+}
+
 }  // namespace
 }  // namespace rbla::validation

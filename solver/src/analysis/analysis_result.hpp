@@ -101,6 +101,25 @@ struct NonAssociativeStep {
   double seconds = 0.0;       ///< of the step's conic solve
 };
 
+/// When the non-associative scheme tests its candidate state (analysis/non_associative.cpp): every
+/// `when_close` steps once a step's own state dilates by less than 1 % of its value, and at
+/// least every `at_most` steps.
+struct TestSchedule {
+  int when_close = 3;
+  int at_most = 10;
+};
+
+/// One run of the non-associative scheme (analysis.non_associative.trajectories runs, each with
+/// its own test schedule).
+struct NonAssociativeTrajectory {
+  TestSchedule schedule;
+  double value = 0.0;  ///< alpha, or the base reaction in kN, of the state the run ended with
+  bool converged = false;  ///< the state passed the fixed-point test
+  int steps = 0;
+  int checks = 0;
+  double seconds = 0.0;  ///< of the run's conic solves
+};
+
 /// First derivatives of alpha at the collapse found (analysis/sensitivities.hpp): associative
 /// friction, load multiplier only. Where the collapse mechanism would change with the parameter
 /// (a kink of alpha), these are the derivatives along this mechanism: one-sided values.
@@ -182,6 +201,10 @@ struct AnalysisResult {
   /// The values of all states compatible with the mechanism found (alpha, or R in kN): non-
   /// associative collapse is not unique; the conservative end is the one reported.
   std::optional<std::pair<double, double>> non_associative_range;
+  /// Every run of the scheme, in schedule order; non_associative_reported is the one whose state
+  /// is reported (the conservative certified one).
+  std::vector<NonAssociativeTrajectory> non_associative_trajectories;
+  int non_associative_reported = 0;
   std::optional<Sensitivities> sensitivities;  ///< associative load-multiplier collapse only
   ProblemSize size;
 

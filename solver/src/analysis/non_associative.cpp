@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <memory>
 
 namespace rbla::analysis {
@@ -31,12 +32,17 @@ constexpr double kStepGap = 1e-6;
 constexpr double kSnapshotGap = 1e-2;
 constexpr double kWarmStartWeight = 0.99;
 /// A step whose own state dilates by less than this (relative to the value) is tested (two more
-/// solves, see ShiftScheme::certify): the first such step, then every kCheckEvery steps; any step
-/// kCheckAlways steps after the last test. The state of a step whose mechanism is not unique (a
-/// squat wall sliding at mu on any of its bed joints) can keep dilating while the value settles.
+/// solves, see ShiftScheme::certify): the first such step, then every TestSchedule::when_close
+/// steps; any step TestSchedule::at_most steps after the last test. The state of a step whose
+/// mechanism is not unique (a squat wall sliding at mu on any of its bed joints) can keep dilating
+/// while the value settles.
 constexpr double kCheckDilatancy = 1e-2;
-constexpr int kCheckEvery = 3;
-constexpr int kCheckAlways = 10;
+/// The schedules of the trajectories, in the order they run. Where a run tests decides which of
+/// several collapse states it certifies. On the six scenes of docs/benchmark/non_associative_states.md
+/// the first certified the most conservative state of the six schedules on three, and the first
+/// three together on five (within 0.01 % on the sixth).
+constexpr TestSchedule kSchedules[] = {{3, 10}, {3, 3}, {5, 20}, {5, 5}, {2, 2}, {15, 15}};
+constexpr int kNumSchedules = static_cast<int>(sizeof(kSchedules) / sizeof(kSchedules[0]));
 
 /// s_k = mu_k |d_t,k|: the friction work rate a sliding point would need to dissipate without
 /// dilatancy, in the dual's own velocity units (formulation units, unnormalised).
@@ -141,8 +147,8 @@ double relative_change(const Eigen::VectorXd& before, const Eigen::VectorXd& aft
 class ShiftScheme {
  public:
   ShiftScheme(const model::Model& m, const Formulation& f, conic::ConicSolver& solver, const Deadline& deadline,
-              AnalysisResult& result)
-      : m_(m), f_(f), solver_(solver), deadline_(deadline), result_(result),
+              TestSchedule schedule, AnalysisResult& result)
+      : m_(m), f_(f), solver_(solver), deadline_(deadline), schedule_(schedule), result_(result),
         request_(m.analysis), cost_(solver.problem().c),
         mixing_(kAndersonMemory, request_.non_associative_damping) {}
 
@@ -171,7 +177,9 @@ class ShiftScheme {
       // Certify when the step is close, every few steps: the step's own (analytic-centre) state
       // can keep some dilatancy while another state of its optimal face has none, when the
       // mechanism is not unique (a squat wall sliding at mu on any of its bed joints).
-      const int wait = dilatancy > kCheckDilatancy ? kCheckAlways : result_.non_associative_checks == 0 ? 0 : kCheckEvery;
+      const int wait = dilatancy > kCheckDilatancy        ? schedule_.at_most
+                       : result_.non_associative_checks == 0 ? 0
+                                                             : schedule_.when_close;
       if (step - last_check >= wait) {
         last_check = step;
         if (certify(next, shift)) {
@@ -383,6 +391,7 @@ class ShiftScheme {
   const Formulation& f_;
   conic::ConicSolver& solver_;
   const Deadline& deadline_;
+  const TestSchedule schedule_;
   AnalysisResult& result_;
   const model::AnalysisRequest& request_;
   const Eigen::VectorXd cost_;
@@ -399,11 +408,82 @@ class ShiftScheme {
 
 }  // namespace
 
+namespace {
+
+/// Whether state a (value va) is to be reported rather than b: certified beats uncertified, then
+/// the conservative value (the lower alpha, the higher R).
+bool preferred(bool settlement, const NonAssociativeTrajectory& a, const NonAssociativeTrajectory& b) {
+  if (a.converged != b.converged) return a.converged;
+  if (!a.converged) return false;  // neither is a collapse state: keep the earlier run's
+  return settlement ? a.value > b.value : a.value < b.value;
+}
+
+bool stopped(const AnalysisResult& r) { return r.verdict == Verdict::TimeLimit || r.verdict == Verdict::Cancelled; }
+
+/// A warning when the certified runs found states further apart than the test's tolerance.
+void warn_about_spread(const model::Model& m, const Formulation& f, AnalysisResult& result) {
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  int certified = 0;
+  for (const NonAssociativeTrajectory& t : result.non_associative_trajectories) {
+    if (!t.converged) continue;
+    ++certified;
+    low = std::min(low, t.value);
+    high = std::max(high, t.value);
+  }
+  const double reported = result.non_associative_trajectories[result.non_associative_reported].value;
+  if (certified < 2 || high - low <= m.analysis.non_associative_tolerance * std::abs(reported)) return;
+  const double unit = f.settlement ? m.units.force_to_kN : 1.0;
+  result.warnings.push_back(
+      {"non_associative_states_differ",
+       std::to_string(certified) + " runs of the non-associative scheme certified collapse states from " +
+           format(low / unit, 6) + " to " + format(high / unit, 6) + " (" + format(100.0 * (high - low) / std::abs(reported), 3) +
+           " % of the value apart); the conservative one, " + format(reported / unit, 6) +
+           ", is reported. Non-associative collapse is not unique: a state outside this range may exist",
+       "/analysis/non_associative/trajectories"});
+}
+
+}  // namespace
+
 void run_non_associative(const model::Model& m, const Formulation& formulation, conic::ConicSolver& solver,
                          const conic::Solution& associative, const Deadline& deadline, double& value,
                          AnalysisResult& result) {
-  ShiftScheme scheme(m, formulation, solver, deadline, result);
-  scheme.run(associative, value);
+  const int runs = std::clamp(m.analysis.non_associative_trajectories, 1, kNumSchedules);
+  const AnalysisResult before = result;
+  std::vector<NonAssociativeTrajectory> found;
+  double solve_seconds = 0.0, assemble_seconds = 0.0;
+  for (int k = 0; k < runs; ++k) {
+    AnalysisResult run = before;
+    double run_value = value;
+    {
+      ShiftScheme scheme(m, formulation, solver, deadline, kSchedules[k], run);
+      scheme.run(associative, run_value);
+    }
+    solve_seconds += run.solve_seconds - before.solve_seconds;
+    assemble_seconds += run.assemble_seconds - before.assemble_seconds;
+    const NonAssociativeTrajectory t{kSchedules[k], run_value, run.non_associative_converged,
+                                     static_cast<int>(run.non_associative.size()) - 1, run.non_associative_checks,
+                                     run.solve_seconds - before.solve_seconds};
+    // A run the clock stopped is reported only when no earlier one finished.
+    if (stopped(run) && k > 0) {
+      result.warnings.push_back({"non_associative_trajectories_incomplete",
+                                 "the time limit ran out in run " + std::to_string(k + 1) + " of " +
+                                     std::to_string(runs) + " of the non-associative scheme; the first " +
+                                     std::to_string(k) + " are compared",
+                                 "/analysis/non_associative/trajectories"});
+      break;
+    }
+    found.push_back(t);
+    if (k == 0 || preferred(formulation.settlement, t, found[result.non_associative_reported])) {
+      result = std::move(run);
+      result.non_associative_reported = k;
+      value = run_value;
+    }
+    result.non_associative_trajectories = found;
+    if (stopped(result)) break;
+  }
+  result.solve_seconds = before.solve_seconds + solve_seconds;
+  result.assemble_seconds = before.assemble_seconds + assemble_seconds;
+  warn_about_spread(m, formulation, result);
 }
 
 }  // namespace rbla::analysis

@@ -31,7 +31,10 @@
 //
 // Non-associative collapse is not unique: states compatible with one mechanism form a range of
 // values (the drawer of tests/validation: 26.68 to 44.55 kN). The conservative end is reported
-// (the lowest alpha, the highest R), with the range of the step's optimal face.
+// (the lowest alpha, the highest R), with the range of the step's optimal face. Different
+// mechanisms give different states too, and which one a run certifies depends on when it tests
+// (docs/benchmark/non_associative_states.md): analysis.non_associative.trajectories runs the
+// scheme with several test schedules and reports the most conservative certified state.
 //
 // Why not Gilbert's own iteration (each step caps |T_k| at mu N_k of the previous step): a step
 // lets a point carry the previous step's mu N of shear after its normal force dropped, so its
@@ -50,7 +53,9 @@ namespace rbla::analysis {
 /// Runs the scheme from the associative solution `associative` of `formulation`, solved by
 /// `solver` (reused: only its cost changes; restored before returning). On return `value` is the
 /// non-associative alpha (or base reaction, kN) and `result` holds its state, mechanism, history,
-/// range and warnings; when no step completes, `value` and the associative state are kept.
+/// range and warnings, those of the run reported when several ran (all runs' values are in
+/// result.non_associative_trajectories); when no step completes, `value` and the associative state
+/// are kept.
 void run_non_associative(const model::Model& m, const Formulation& formulation, conic::ConicSolver& solver,
                          const conic::Solution& associative, const Deadline& deadline, double& value,
                          AnalysisResult& result);

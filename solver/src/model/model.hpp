@@ -106,6 +106,9 @@ struct AnalysisRequest {
   double non_associative_tolerance = 1e-3;
   double non_associative_damping = 0.5;
   bool non_associative_warm_start = true;
+  // Runs of the scheme with different test schedules (analysis/non_associative.hpp): the
+  // conservative certified state is reported, and all the states found.
+  int non_associative_trajectories = 1;
   // With a pyramid cone and associative friction: also solve the other pyramid (inscribed and
   // circumscribed bracket the exact cone) and report both.
   bool pyramid_bracket = false;
