@@ -410,7 +410,7 @@ class ShiftScheme {
 
 namespace {
 
-/// Whether state a (value va) is to be reported rather than b: certified beats uncertified, then
+/// Whether run a's state is to be reported rather than run b's: certified beats uncertified, then
 /// the conservative value (the lower alpha, the higher R).
 bool preferred(bool settlement, const NonAssociativeTrajectory& a, const NonAssociativeTrajectory& b) {
   if (a.converged != b.converged) return a.converged;
