@@ -235,6 +235,7 @@ class Result(object):
         self.interfaces = [Interface(i) for i in data.get("interfaces", [])]
         self.cracked_interfaces = list(data.get("cracked_interfaces", []))
         self.warnings = list(data.get("warnings", []))
+        self.sensitivities = data.get("sensitivities")
 
     @property
     def is_collapse(self):
@@ -275,6 +276,20 @@ class Result(object):
         for i in self.interfaces:
             counts[i.state] = counts.get(i.state, 0) + 1
         return counts
+
+    def influential_joints(self, count=5):
+        """The joints whose friction coefficient changes the result most, from the result's
+        ``sensitivities`` (largest magnitude first, as the solver lists them): list of
+        (interface id, derivative, symbol) with symbol 'dalpha/dmu' or 'dR/dmu' (R in the
+        model's force unit). Empty when the result has no sensitivities."""
+        s = self.sensitivities or {}
+        out = []
+        for entry in s.get("interfaces", [])[:count]:
+            if "d_base_reaction_d_friction" in entry:
+                out.append((entry["id"], entry["d_base_reaction_d_friction"], "dR/dmu"))
+            elif "d_load_multiplier_d_friction" in entry:
+                out.append((entry["id"], entry["d_load_multiplier_d_friction"], "dalpha/dmu"))
+        return out
 
     def support_reactions(self):
         """Forces the supports (fixed or moving blocks) exert on the structure, per interface:
@@ -373,6 +388,25 @@ def reaction_labels(result, digits=3, length_scale=1.0):
         t = geo.norm(geo.sub(f, geo.scale(itf.normal, geo.dot(f, itf.normal))))
         text = "%s: N %.*g | T %.*g %s" % (r["support"], digits, n, digits, t, result.force_unit)
         out.append((tuple(c * k for c in r["point"]), text))
+    return out
+
+
+def influence_labels(result, count=5, digits=3, length_scale=1.0):
+    """(point, text) pairs marking the most influential joints at their contact polygons'
+    centroids, numbered as the mechanism SVG numbers them: '#1 I33: dR/dmu = -1.09 kN'."""
+    if not isinstance(result, Result):
+        result = Result(result)
+    k = 1.0 / float(length_scale)
+    itfs = dict((i.id, i) for i in result.interfaces)
+    out = []
+    for rank, (iid, value, symbol) in enumerate(result.influential_joints(count), 1):
+        itf = itfs.get(iid)
+        c = itf.centroid() if itf is not None else None
+        if c is None:
+            continue
+        unit = " " + result.force_unit if symbol == "dR/dmu" else ""
+        text = "#%d %s: %s = %.*g%s" % (rank, iid, symbol, digits, value, unit)
+        out.append((tuple(x * k for x in c), text))
     return out
 
 

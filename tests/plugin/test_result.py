@@ -185,6 +185,26 @@ class ResultParseTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             R.Result({"no": "status"})
 
+    def test_influential_joints_from_sensitivities(self):
+        from rbla_cad import jsonschema_lite
+        doc = json.loads(json.dumps(self.DOC))
+        self.assertEqual(R.influence_labels(doc), [])
+        doc["analysis"]["type"] = "settlement"
+        del doc["load_multiplier"]
+        doc["base_reaction"] = {"at_collapse": 12.0, "moving_blocks": ["base"]}
+        doc["sensitivities"] = {"d_base_reaction_d_friction_factor": -1.5,
+                                "interfaces": [{"id": "I0", "d_base_reaction_d_friction": -2.5}],
+                                "blocks": [{"id": "B", "d_base_reaction_d_unit_weight": 0.04}]}
+        self.assertEqual(jsonschema_lite.validate_result(doc), [])
+        r = R.Result(doc)
+        self.assertEqual(r.influential_joints(), [("I0", -2.5, "dR/dmu")])
+        (point, text), = R.influence_labels(r)
+        self.assertEqual(text, "#1 I0: dR/dmu = -2.5 kN")
+        self.assertEqual(point, R.geo.polygon_centroid(r.interfaces[0].polygon))
+        # Both quantities in one section break the schema's either/or.
+        doc["sensitivities"]["d_load_multiplier_d_friction_factor"] = 0.1
+        self.assertNotEqual(jsonschema_lite.validate_result(doc), [])
+
 
 if __name__ == "__main__":
     unittest.main()

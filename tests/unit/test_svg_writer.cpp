@@ -305,6 +305,32 @@ TEST(SvgMechanism, OtherVerdictTitles) {
   EXPECT_EQ(xml_problem(svg), "");
 }
 
+TEST(SvgMechanism, MarksAndListsTheMostInfluentialJoints) {
+  const Model model = pier_model();
+  AnalysisResult result = rocking_result(model);
+  const rbla::io::SvgView plain = rbla::io::mechanism_view(model, result);
+  EXPECT_EQ(rbla::io::mechanism_svg(model, result).find("Most influential joints"), std::string::npos);
+
+  rbla::analysis::Sensitivities sensitivities;
+  sensitivities.interface_friction = {{0, 0.375}};
+  result.sensitivities = sensitivities;
+  const std::string svg = rbla::io::mechanism_svg(model, result);
+  EXPECT_EQ(xml_problem(svg), "");
+  EXPECT_NE(svg.find("Most influential joints"), std::string::npos);
+  EXPECT_NE(svg.find("1  " + model.interfaces[0].id + ": dα/dμ = 0.375"), std::string::npos);
+  EXPECT_EQ(count(svg, "<circle"), 1u);
+  // The list sits under the drawing: the page grows by a heading and one line.
+  EXPECT_GT(rbla::io::mechanism_view(model, result).height, plain.height + 30.0);
+
+  // Under settlement the derivative is a force, in the model's units.
+  result.type = rbla::model::AnalysisType::Settlement;
+  result.load_multiplier.reset();
+  result.base_reaction = 12.0;
+  result.sensitivities->quantity = rbla::analysis::SensitivityOf::BaseReaction;
+  result.sensitivities->interface_friction = {{0, -2.5}};
+  EXPECT_NE(rbla::io::mechanism_svg(model, result).find("dR/dμ = -2.5 kN"), std::string::npos);
+}
+
 TEST(SvgMechanism, LargeWallStaysCompact) {
   // 50 x 40 bricks 0.4 x 0.3 x 0.2 m, every one moving: the size a facade sample gives.
   Model model;

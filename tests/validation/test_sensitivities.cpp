@@ -7,15 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace rbla::validation {
 namespace {
-
-double alpha_of(const model::Model& m) {
-  const AnalysisResult r = rbla::analysis::analyse(m);
-  EXPECT_EQ(r.verdict, Verdict::Collapse);
-  return r.load_multiplier.value_or(std::nan(""));
-}
 
 TEST(Sensitivities, ASlidingBlockGainsAlphaOneForOneWithFrictionAndATippingOneNothing) {
   for (const auto& [mu, slides] : {std::pair{0.3, true}, std::pair{0.6, false}}) {
@@ -43,26 +38,44 @@ TEST(Sensitivities, NotReportedForNonAssociativeFriction) {
   EXPECT_FALSE(run(single_block(1.0, 2.0, s)).sensitivities.has_value());
 }
 
-/// The wall in its own (planar LP) formulation and with 3-D cones.
-class WallDifferences : public ::testing::TestWithParam<model::Formulation> {
+/// The value the sensitivities differentiate: alpha, or the base reaction under settlement (model
+/// force units, kN in these samples).
+double value_of(const AnalysisResult& r) {
+  EXPECT_EQ(r.verdict, Verdict::Collapse);
+  if (r.type == model::AnalysisType::Settlement) return r.base_reaction.value_or(std::nan(""));
+  return r.load_multiplier.value_or(std::nan(""));
+}
+
+struct Scene {
+  const char* sample;
+  model::Formulation formulation;
+};
+
+/// The bundled walls (an opening under a seismic load, a settling base) in their own (planar LP)
+/// formulation and with 3-D cones.
+class WallDifferences : public ::testing::TestWithParam<Scene> {
  protected:
   void SetUp() override {
-    loaded_ = rbla::io::load_model_file(std::string(RBLA_SOURCE_DIR) + "/samples/wall_opening.json");
-    loaded_.model.analysis.formulation = GetParam();
+    loaded_ = rbla::io::load_model_file(std::string(RBLA_SOURCE_DIR) + "/samples/" + GetParam().sample);
+    loaded_.model.analysis.formulation = GetParam().formulation;
     result_ = rbla::analysis::analyse(loaded_.model);
     ASSERT_EQ(result_.verdict, Verdict::Collapse);
     ASSERT_TRUE(result_.sensitivities);
+    value_ = value_of(result_);
   }
-  /// Central difference of alpha for a change `apply(model, +-h)`.
+  /// Central difference of the value for a change `apply(model, +-h)`.
   template <class Apply>
   double difference(Apply apply, double h) const {
     model::Model up = loaded_.model, down = loaded_.model;
     apply(up, h);
     apply(down, -h);
-    return (alpha_of(up) - alpha_of(down)) / (2.0 * h);
+    return (value_of(rbla::analysis::analyse(up)) - value_of(rbla::analysis::analyse(down))) / (2.0 * h);
   }
+  /// Derivatives below this are zero for the comparison (relative to the value: alpha ~ 0.5, R ~ 12 kN).
+  double floor() const { return 1e-2 * std::max(1.0, std::abs(value_)); }
   rbla::io::LoadedModel loaded_;
   AnalysisResult result_;
+  double value_ = 0.0;
 };
 
 // Central differences carry the solver's error over the step: alpha to ~1e-8 relative over a
@@ -75,7 +88,7 @@ TEST_P(WallDifferences, FrictionFactorMatchesACentralDifference) {
   const double fd = difference([](model::Model& m, double h) {
     for (auto& contact : m.interfaces) contact.friction *= 1.0 + h;
   }, kFactorStep);
-  EXPECT_NEAR(result_.sensitivities->friction_factor, fd, 1e-4 * std::max(1e-2, std::abs(fd)))
+  EXPECT_NEAR(result_.sensitivities->friction_factor, fd, 1e-4 * std::max(floor(), std::abs(fd)))
       << "analytic " << result_.sensitivities->friction_factor << ", difference " << fd;
 }
 
@@ -86,7 +99,7 @@ TEST_P(WallDifferences, TheMostInfluentialJointsMatchCentralDifferences) {
   for (std::size_t i = 0; i < std::min<std::size_t>(3, joints.size()); ++i) {
     const int k = joints[i].first;
     const double fd = difference([k](model::Model& m, double h) { m.interfaces[k].friction += h; }, kStep);
-    EXPECT_NEAR(joints[i].second, fd, 1e-5 * std::max(1e-2, std::abs(fd))) << "interface " << k;
+    EXPECT_NEAR(joints[i].second, fd, 1e-5 * std::max(floor(), std::abs(fd))) << "interface " << k;
   }
 }
 
@@ -103,9 +116,28 @@ TEST_P(WallDifferences, UnitWeightsOfMovingBlocksMatchCentralDifferences) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Formulations, WallDifferences,
-                         ::testing::Values(model::Formulation::Planar, model::Formulation::ThreeD),
-                         [](const auto& info) { return info.param == model::Formulation::Planar ? "planar" : "cones_3d"; });
+// Scaling every unit weight by t scales every load with it (the samples carry no point loads):
+// alpha does not change and R scales by t. So sum_b gamma_b d value / d gamma_b is 0 for alpha
+// and R for the base reaction (Euler's theorem for homogeneous functions).
+TEST_P(WallDifferences, UnitWeightDerivativesObeyHomogeneity) {
+  ASSERT_TRUE(loaded_.model.dead_loads.empty() && loaded_.model.live_loads.empty());
+  double sum = 0.0;
+  for (const auto& [b, value] : result_.sensitivities->block_unit_weight) sum += loaded_.model.blocks[b].unit_weight * value;
+  const bool settlement = result_.type == model::AnalysisType::Settlement;
+  EXPECT_NEAR(sum, settlement ? value_ : 0.0, 1e-6 * std::max(1.0, std::abs(value_)));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Samples, WallDifferences,
+    ::testing::Values(Scene{"wall_opening.json", model::Formulation::Planar},
+                      Scene{"wall_opening.json", model::Formulation::ThreeD},
+                      Scene{"wall_settlement.json", model::Formulation::Planar},
+                      Scene{"wall_settlement.json", model::Formulation::ThreeD}),
+    [](const auto& info) {
+      const std::string scene = std::string(info.param.sample).find("settlement") != std::string::npos
+                                    ? "settlement" : "opening";
+      return scene + (info.param.formulation == model::Formulation::Planar ? "_planar" : "_cones_3d");
+    });
 
 }  // namespace
 }  // namespace rbla::validation

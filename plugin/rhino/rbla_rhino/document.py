@@ -250,6 +250,9 @@ def draw_result(doc, model, result, amplitude=None, screw=False, show_closed=Fal
         for p, text in rres.reaction_labels(result, 3, scale):
             doc.Objects.AddTextDot(rg.TextDot(text, rgeo.point3d(p)),
                                    _attributes(lab, (60, 60, 60), "rbla:reaction"))
+        for p, text in rres.influence_labels(result, 5, 3, scale):
+            doc.Objects.AddTextDot(rg.TextDot(text, rgeo.point3d(p)),
+                                   _attributes(lab, (17, 17, 17), "rbla:influential_joint"))
         if hide_originals and block_objects:
             for oid in block_objects.values():
                 doc.Objects.Hide(oid, True)

@@ -192,7 +192,7 @@ def mechanism(model_text, result_text, amplitude=None, screw=False, show_closed=
         out["contacts"].append(rgeo.polygon_mesh(pts) if len(pts) >= 3 else None)
         out["outlines"].append(rg.Polyline([rgeo.point3d(p) for p in pts] +
                                            [rgeo.point3d(pts[0])]))
-    for p, text in rres.reaction_labels(res, 3, scale):
+    for p, text in rres.reaction_labels(res, 3, scale) + rres.influence_labels(res, 5, 3, scale):
         out["dot_points"].append(rgeo.point3d(p))
         out["dot_texts"].append(text)
     return out, s

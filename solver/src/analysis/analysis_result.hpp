@@ -120,15 +120,21 @@ struct NonAssociativeTrajectory {
   double seconds = 0.0;  ///< of the run's conic solves
 };
 
-/// First derivatives of alpha at the collapse found (analysis/sensitivities.hpp): associative
-/// friction, load multiplier only. Where the collapse mechanism would change with the parameter
-/// (a kink of alpha), these are the derivatives along this mechanism: one-sided values.
+/// What a Sensitivities record differentiates.
+enum class SensitivityOf { LoadMultiplier, BaseReaction };
+
+/// First derivatives of alpha, or under settlement of the base reaction R (kN), at the collapse
+/// found (analysis/sensitivities.hpp): associative friction only. Where the collapse mechanism
+/// would change with the parameter (a kink), these are the derivatives along this mechanism:
+/// one-sided values.
 struct Sensitivities {
-  /// d alpha / d s with every interface's friction coefficient mu_k scaled to s mu_k, at s = 1.
+  SensitivityOf quantity = SensitivityOf::LoadMultiplier;
+  /// d value / d s with every interface's friction coefficient mu_k scaled to s mu_k, at s = 1.
   double friction_factor = 0.0;
-  /// (interface index, d alpha / d mu_k) for the interfaces where it is not zero.
+  /// (interface index, d value / d mu_k) for the interfaces where it is not zero.
   std::vector<std::pair<int, double>> interface_friction;
-  /// (block index, d alpha / d unit weight, in 1 / (kN/m^3)) for the blocks that move.
+  /// (block index, d value / d unit weight, in 1 / (kN/m^3) for alpha, m^3 for R) for the
+  /// blocks that move.
   std::vector<std::pair<int, double>> block_unit_weight;
 };
 
@@ -205,7 +211,7 @@ struct AnalysisResult {
   /// is reported (the conservative certified one).
   std::vector<NonAssociativeTrajectory> non_associative_trajectories;
   int non_associative_reported = 0;
-  std::optional<Sensitivities> sensitivities;  ///< associative load-multiplier collapse only
+  std::optional<Sensitivities> sensitivities;  ///< associative collapse only
   ProblemSize size;
 
   double assemble_seconds = 0.0;

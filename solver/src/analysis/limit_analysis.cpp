@@ -1,7 +1,5 @@
 #include "analysis/limit_analysis.hpp"
 
-#include "analysis/sensitivities.hpp"
-
 #include "analysis/connectivity.hpp"
 #include "analysis/formulation.hpp"
 #include "analysis/initial_reaction.hpp"
@@ -373,7 +371,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
     }
     if (result.verdict == Verdict::Collapse) {
       record_value(m, formulation, value, result);
-      result.sensitivities = load_multiplier_sensitivities(m, result);
+      result.sensitivities = collapse_sensitivities(m, result);
     }
   }
   write_verdict_text(m, result);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -19,18 +20,23 @@ std::vector<std::pair<int, double>> by_magnitude(std::vector<std::pair<int, doub
 }  // namespace
 
 json sensitivities_json(const model::Model& model, const analysis::Sensitivities& s) {
+  // The value differentiated: alpha (dimensionless), or the base reaction (kN inside, the
+  // model's force unit outside).
+  const bool reaction = s.quantity == analysis::SensitivityOf::BaseReaction;
+  const std::string name = reaction ? "base_reaction" : "load_multiplier";
+  const double l = model.units.length_to_m, f = model.units.force_to_kN;
+  const double value_unit = reaction ? 1.0 / f : 1.0;
   json interfaces = json::array();
   for (const auto& [k, value] : by_magnitude(s.interface_friction)) {
-    interfaces.push_back({{"id", model.interfaces[k].id}, {"d_load_multiplier_d_friction", value}});
+    interfaces.push_back({{"id", model.interfaces[k].id}, {"d_" + name + "_d_friction", value * value_unit}});
   }
-  // Unit weight: kN/m^3 inside, user force / user length^3 outside.
-  const double l = model.units.length_to_m, f = model.units.force_to_kN;
-  const double per_user_unit_weight = f / (l * l * l);
+  // Unit weight: kN/m^3 inside, model force / model length^3 outside.
+  const double per_user_unit_weight = value_unit * f / (l * l * l);
   json blocks = json::array();
   for (const auto& [b, value] : by_magnitude(s.block_unit_weight)) {
-    blocks.push_back({{"id", model.blocks[b].id}, {"d_load_multiplier_d_unit_weight", value * per_user_unit_weight}});
+    blocks.push_back({{"id", model.blocks[b].id}, {"d_" + name + "_d_unit_weight", value * per_user_unit_weight}});
   }
-  return json{{"d_load_multiplier_d_friction_factor", s.friction_factor},
+  return json{{"d_" + name + "_d_friction_factor", s.friction_factor * value_unit},
               {"interfaces", interfaces},
               {"blocks", blocks}};
 }

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rbla::io {
@@ -35,6 +36,11 @@ constexpr const char* kGhostColour = "#b4b4b4";
 constexpr int kMovingRgb = 0xf4b183;
 constexpr int kRestingRgb = 0xdcd7cd;
 constexpr int kSupportRgb = 0x5a5a5a;
+// The joints whose friction coefficient moves the result most (result.sensitivities), marked and
+// listed under the drawing: enough to point at the ones to inspect, few enough to read.
+constexpr std::size_t kInfluentialJoints = 5;
+constexpr const char* kInfluenceColour = "#111111";
+constexpr double kFooterLine = 18.0;
 
 std::string escape(const std::string& text) {
   std::string out;
@@ -264,6 +270,23 @@ int legend_rows(double width) {
 
 double header_height(double width) { return 70.0 + 22.0 * legend_rows(width) + 10.0; }
 
+/// (interface, d value / d mu) of the most influential joints, largest magnitude first, as the
+/// result JSON lists them; empty without sensitivities.
+std::vector<std::pair<int, double>> influential_joints(const model::Model& model, const AnalysisResult& result) {
+  if (!result.sensitivities) return {};
+  std::vector<std::pair<int, double>> joints;
+  for (const auto& entry : result.sensitivities->interface_friction) {
+    if (entry.first >= 0 && static_cast<std::size_t>(entry.first) < model.interfaces.size()) joints.push_back(entry);
+  }
+  std::stable_sort(joints.begin(), joints.end(),
+                   [](const auto& a, const auto& b) { return std::abs(a.second) > std::abs(b.second); });
+  if (joints.size() > kInfluentialJoints) joints.resize(kInfluentialJoints);
+  return joints;
+}
+
+/// The list of influential joints under the drawing: a heading and one line per joint.
+double footer_height(std::size_t num_joints) { return num_joints == 0 ? 0.0 : kFooterLine * (num_joints + 1) + 6.0; }
+
 struct Scene {
   SvgView view;
   std::vector<RigidMotion> motions;             // per block
@@ -322,7 +345,8 @@ Scene build_scene(const model::Model& model, const AnalysisResult& result, const
   if (!std::isfinite(view.scale) || view.scale <= 0.0) view.scale = 1.0;
   view.origin_x = kMargin + 0.5 * (drawing_width - (x_max - x_min) * view.scale) - x_min * view.scale;
   view.origin_y = header + y_max * view.scale;
-  view.height = header + (y_max - y_min) * view.scale + kMargin;
+  view.height = header + (y_max - y_min) * view.scale + kMargin +
+                footer_height(influential_joints(model, result).size());
   return scene;
 }
 
@@ -550,6 +574,65 @@ void append_cracks(std::string& out, const model::Model& model, const AnalysisRe
   }
 }
 
+/// The displaced polygon of an interface, moved with block_a (as the cracks are).
+std::vector<Vec3> displaced_polygon(const model::ContactInterface& contact, const Scene& scene) {
+  RigidMotion motion;
+  if (contact.block_a >= 0 && static_cast<std::size_t>(contact.block_a) < scene.motions.size()) {
+    motion = scene.motions[static_cast<std::size_t>(contact.block_a)];
+  }
+  std::vector<Vec3> polygon;
+  for (const Vec3& p : contact.polygon) polygon.push_back(motion.apply(p));
+  return polygon;
+}
+
+/// "dα/dμ = 0.42" or "dR/dμ = -3.1 kN": the derivative in the model's units.
+std::string derivative_words(const model::Model& model, const AnalysisResult& result, double value) {
+  if (result.sensitivities->quantity == analysis::SensitivityOf::BaseReaction) {
+    const double factor = model.units.force_to_kN > 0.0 ? model.units.force_to_kN : 1.0;
+    return "dR/dμ = " + printf_string("%.4g", value / factor) + " " + model.units.force_name;
+  }
+  return "dα/dμ = " + printf_string("%.4g", value);
+}
+
+/// The most influential joints: a dashed outline and a numbered marker on each, and the numbers
+/// with their ids and derivatives listed under the drawing.
+void append_influential_joints(std::string& out, const model::Model& model, const AnalysisResult& result,
+                               const Scene& scene) {
+  const std::vector<std::pair<int, double>> joints = influential_joints(model, result);
+  if (joints.empty()) return;
+  std::string marks;
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    const model::ContactInterface& contact = model.interfaces[static_cast<std::size_t>(joints[i].first)];
+    const std::vector<Vec3> polygon = displaced_polygon(contact, scene);
+    if (polygon.empty()) continue;
+    marks += "<path d=\"";
+    Vec3 centre = Vec3::Zero();
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+      marks += k == 0 ? 'M' : 'L';
+      append_point(marks, scene.view, polygon[k]);
+      centre += polygon[k] / static_cast<double>(polygon.size());
+    }
+    marks += "Z\"><title>" + escape(contact.id) + ": " + derivative_words(model, result, joints[i].second) +
+             "</title></path>\n";
+    const Eigen::Vector2d c = scene.view.to_page(centre);
+    marks += "<circle cx=\"" + coordinate(c.x()) + "\" cy=\"" + coordinate(c.y()) + "\" r=\"8\" fill=\"" +
+             kInfluenceColour + "\" stroke=\"none\"/>";
+    append_text(marks, c.x(), c.y() + 4, std::to_string(i + 1),
+                "text-anchor=\"middle\" font-size=\"11\" fill=\"#ffffff\" stroke=\"none\"");
+  }
+  out += "<g stroke=\"" + std::string(kInfluenceColour) +
+         "\" fill=\"none\" stroke-width=\"1.5\" stroke-dasharray=\"5 3\">\n" + marks + "</g>\n";
+  double y = scene.view.height - footer_height(joints.size()) + kFooterLine;
+  append_text(out, kMargin, y, "Most influential joints (friction, from the sensitivities):",
+              "font-size=\"13\" font-weight=\"bold\"");
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    y += kFooterLine;
+    const std::string& id = model.interfaces[static_cast<std::size_t>(joints[i].first)].id;
+    append_text(out, kMargin, y, std::to_string(i + 1) + "  " + id + ": " + derivative_words(model, result, joints[i].second),
+                "font-size=\"12\"");
+  }
+}
+
 }  // namespace
 
 SvgView mechanism_view(const model::Model& model, const AnalysisResult& result, const SvgOptions& options) {
@@ -571,6 +654,7 @@ std::string mechanism_svg(const model::Model& model, const AnalysisResult& resul
   append_ghost_outlines(out, model, view);
   append_blocks(out, model, result, scene);
   append_cracks(out, model, result, scene);
+  append_influential_joints(out, model, result, scene);
   out += "</svg>\n";
   return out;
 }
