@@ -223,13 +223,22 @@ class Runner(object):
             extra += ["--max-directions", str(int(max_directions))]
         return self._analysis("worst-direction", extra, model, **_analysis_kwargs(kwargs))
 
-    def critical_friction(self, model, target_alpha=None, tolerance=None, **kwargs):
-        """``rbla critical-friction``: the smallest factor on every friction coefficient at
-        which the structure stands (or carries target_alpha). The outcome's result is the
-        analysis at that factor; ``result.data["critical_friction"]`` holds the search."""
+    def critical_friction(self, model, target_alpha=None, tolerance=None, interfaces=None,
+                          interfaces_of=None, **kwargs):
+        """``rbla critical-friction``: the smallest factor on every friction coefficient (or on
+        those of ``interfaces``, ids or labels, and of the interfaces touching the blocks
+        ``interfaces_of``) at which the structure stands (or carries target_alpha). The
+        outcome's result is the analysis at that factor; ``result.data["critical_friction"]``
+        holds the search."""
         extra = []
         if target_alpha is not None:
             extra += ["--target-alpha", repr(float(target_alpha))]
+        for option, names in (("--interfaces", interfaces), ("--interfaces-of", interfaces_of)):
+            names = [names] if isinstance(names, str) else list(names or [])
+            if any("," in n for n in names):
+                raise ValueError("%s: a name with a comma cannot be passed to rbla" % option)
+            if names:
+                extra += [option, ",".join(names)]
         if tolerance is not None:
             extra += ["--tolerance", repr(float(tolerance))]
         return self._analysis("critical-friction", extra, model, **_analysis_kwargs(kwargs))

@@ -7,9 +7,12 @@
 #include "io/critical_friction_json.hpp"
 #include "io/worst_direction_json.hpp"
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace rbla::cli {
 namespace {
@@ -17,7 +20,32 @@ namespace {
 struct FrictionSearch {
   analysis::ThresholdSettings threshold;
   std::optional<double> target_alpha;
+  std::vector<std::string> interface_names;  ///< --interfaces: ids or labels
+  std::vector<std::string> block_names;      ///< --interfaces-of: the interfaces of these blocks
 };
+
+/// The chosen interfaces (empty: all); a name that picks nothing is an error naming its option.
+std::vector<int> chosen_interfaces(const model::Model& model, const FrictionSearch& search) {
+  if (search.interface_names.empty() && search.block_names.empty()) return {};
+  std::vector<model::InputIssue> issues;
+  auto check = [&issues](const char* option, const char* what, const std::vector<std::string>& unmatched) {
+    for (const std::string& name : unmatched) issues.push_back({option, std::string("no ") + what + " has the id or label '" + name + "'"});
+  };
+  std::vector<std::string> unmatched_interfaces, unmatched_blocks;
+  const std::vector<int> by_name = model.interfaces_named(search.interface_names, {}, unmatched_interfaces);
+  const std::vector<int> by_block = model.interfaces_named({}, search.block_names, unmatched_blocks);
+  check("--interfaces", "interface", unmatched_interfaces);
+  check("--interfaces-of", "block", unmatched_blocks);
+  if (issues.empty() && by_name.empty() && by_block.empty()) {
+    issues.push_back({"--interfaces-of", "the blocks named touch no interface"});
+  }
+  if (!issues.empty()) throw model::ModelError(issues);
+  std::vector<int> chosen = by_name;
+  chosen.insert(chosen.end(), by_block.begin(), by_block.end());
+  std::sort(chosen.begin(), chosen.end());
+  chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+  return chosen;
+}
 
 analysis::AnalysisOptions analysis_options_of(const CommonOptions& options) {
   analysis::AnalysisOptions analysis_options;
@@ -49,14 +77,15 @@ int run_critical_friction(const CommonOptions& options, const FrictionSearch& se
   io::LoadedModel loaded;
   int exit_code = kSuccess;
   if (!load(options, loaded, exit_code)) return exit_code;
+  const std::vector<int> chosen = chosen_interfaces(loaded.model, search);
   progress(options, "searching the smallest friction factor");
-  const analysis::CriticalFriction c = analysis::find_critical_friction(loaded.model, search.target_alpha,
-                                                                        analysis_options_of(options), search.threshold);
+  const analysis::CriticalFriction c = analysis::find_critical_friction(
+      loaded.model, search.target_alpha, analysis_options_of(options), search.threshold, chosen);
   report_warnings(c.at_critical.warnings, options);
   progress(options, std::to_string(c.evaluations.size()) + " factors in " + seconds_text(c.seconds));
   (stdout_taken ? std::cerr : std::cout) << shown(c.verdict_text) << "\n";
   ExtraOutput extra{"critical_friction.svg", [&c] { return io::critical_friction_svg(c); }, "critical_friction",
-                    io::critical_friction_json(c, search.threshold.tolerance)};
+                    io::critical_friction_json(loaded.model, c, search.threshold.tolerance)};
   const int code = write_analysis_outputs(options, c.model_at_critical, c.at_critical, loaded.timings, start, extra);
   if (code != kSuccess) return code;
   return c.outcome == analysis::ThresholdOutcome::Failed ? kSolverFailure : kSuccess;
@@ -93,7 +122,8 @@ Command add_worst_direction(CLI::App& app, CommonOptions& options) {
 Command add_critical_friction(CLI::App& app, CommonOptions& options) {
   auto search = std::make_shared<FrictionSearch>();
   CLI::App* friction = app.add_subcommand(
-      "critical-friction", "Find the smallest friction (all coefficients scaled together) to stand or carry a load multiplier");
+      "critical-friction",
+      "Find the smallest friction (all coefficients, or a chosen set, scaled together) to stand or carry a load multiplier");
   friction->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
   friction->add_option("-o,--output", options.output_path,
                        "Result JSON at the critical friction, with a critical_friction section ('-' for standard output)");
@@ -101,6 +131,12 @@ Command add_critical_friction(CLI::App& app, CommonOptions& options) {
   friction->add_option("--target-alpha", search->target_alpha,
                        "Smallest friction that carries this load multiplier (default: that stands under its own weight)")
       ->check(CLI::Range(0.0, 1e6));
+  friction->add_option("--interfaces", search->interface_names,
+                       "Scale only these interfaces' friction: ids or CAD labels, comma-separated (default: all)")
+      ->delimiter(',');
+  friction->add_option("--interfaces-of", search->block_names,
+                       "Scale only the friction of the interfaces touching these blocks: ids or labels, comma-separated")
+      ->delimiter(',');
   friction->add_option("--tolerance", search->threshold.tolerance,
                        "Stop when the certified bracket of the factor is this narrow, relative")
       ->default_val(search->threshold.tolerance)

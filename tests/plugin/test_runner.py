@@ -176,6 +176,11 @@ class SolverRunTest(unittest.TestCase):
         out = self.runner.critical_friction(_support.sample("block.json"), target_alpha=0.3,
                                             tolerance=1e-6, verbose=False)
         self.assertAlmostEqual(out.result.data["critical_friction"]["friction"], 0.3, places=5)
+        out = self.runner.critical_friction(_support.sample("block.json"), target_alpha=0.3,
+                                            interfaces_of="block", verbose=False)
+        self.assertEqual(len(out.result.data["critical_friction"]["scaled_interfaces"]), 1)
+        with self.assertRaises(ValueError):
+            self.runner.critical_friction(_support.sample("block.json"), interfaces=["a,b"])
         with self.assertRaises(TypeError):
             self.runner.critical_friction(_support.sample("block.json"), target=0.3)
 

@@ -218,6 +218,32 @@ TEST_F(Cli, WorstDirectionRefusesASettlementModelNamingTheField) {
   EXPECT_FALSE(fs::exists(path("w.json")));
 }
 
+TEST_F(Cli, CriticalFrictionScalesTheInterfacesOfChosenBlocks) {
+  const auto r = run("critical-friction -q " + write("m.json", box_model()) + " --interfaces-of B1 --target-alpha 0.3" +
+                     " --tolerance 1e-6 -o " + path("c.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(path("c.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
+  const auto c = nlohmann::json::parse(text.str()).at("critical_friction");
+  ASSERT_EQ(c.at("scaled_interfaces").size(), 1u);
+  EXPECT_NEAR(c.at("friction").get<double>(), 0.3, 1e-6);
+}
+
+TEST_F(Cli, CriticalFrictionNamesAnInterfaceItCannotFind) {
+  write("c.json", "not ours");
+  const auto r = run("critical-friction " + write("m.json", box_model()) + " --interfaces I0,no_such_joint -o " +
+                     path("c.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--interfaces"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'no_such_joint'"), std::string::npos) << r.output;
+  std::ifstream in(path("c.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), "not ours");  // the file that was there is left as it was
+}
+
 TEST_F(Cli, CriticalFrictionWritesAValidResultWithTheBracket) {
   // The same block carries alpha = min(mu, 0.5): alpha 0.3 needs mu = 0.3, the given 0.6 times 0.5.
   const auto r = run("critical-friction -q " + write("m.json", box_model()) + " --target-alpha 0.3 --tolerance 1e-6 -o " +

@@ -1,11 +1,15 @@
 // The critical friction (analysis/critical_friction.hpp) against closed forms: a block on an
 // inclined plane stands iff mu >= tan(beta); a block of half-width b/2 and centroid height h/2
 // on a flat base carries alpha = min(mu, b/h), so it reaches a target alpha_t < b/h at mu =
-// alpha_t and no friction makes it reach alpha_t > b/h.
+// alpha_t and no friction makes it reach alpha_t > b/h; with two blocks stacked on the plane and
+// only one joint scaled, that joint alone needs mu >= tan(beta).
 #include "analysis/critical_friction.hpp"
 #include "validation_helpers.hpp"
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace rbla::validation {
 namespace {
@@ -17,9 +21,10 @@ constexpr double kPi = 3.14159265358979323846;
 /// A squat block (1 x 1 x 0.2) on a fixed base, both tilted by `beta` about the y axis: the bed
 /// joint slopes at beta, and the centroid stays well inside the contact (tipping would need
 /// tan(beta) > 5).
-json inclined_block(double beta, double mu) {
+json inclined_block(double beta, double mu, bool stacked = false) {
   json blocks = json::array({box_block("base", -1.0, -0.5, -0.3, 1.0, 1.5, 0.0, "fixed"),
                              box_block("block", -0.5, 0.0, 0.0, 0.5, 1.0, 0.2)});
+  if (stacked) blocks.push_back(box_block("top", -0.4, 0.1, 0.2, 0.4, 0.9, 0.4));
   for (json& block : blocks) {
     for (json& v : block["vertices"]) {
       const double x = v[0], z = v[2];
@@ -75,6 +80,51 @@ TEST(CriticalFriction, NoFrictionReachesATargetAboveTheTippingLimit) {
   // The largest factor tried is the one that takes mu to the schema's limit of 100.
   EXPECT_NEAR(*c.uniform_friction * *c.factor_lower, 100.0, 1e-9);
   EXPECT_NE(c.verdict_text.find("No friction up to mu = 100"), std::string::npos) << c.verdict_text;
+}
+
+/// The interface between two blocks, by their ids.
+int interface_between(const model::Model& m, const std::string& a, const std::string& b) {
+  for (std::size_t k = 0; k < m.interfaces.size(); ++k) {
+    const std::string& first = m.blocks[m.interfaces[k].block_a].id;
+    const std::string& second = m.blocks[m.interfaces[k].block_b].id;
+    if ((first == a && second == b) || (first == b && second == a)) return static_cast<int>(k);
+  }
+  return -1;
+}
+
+// Two blocks on a plane at 20 degrees, the bed joint at mu = 0.5 and the joint between them at
+// 1.0, both above tan(20) = 0.364. Scaling only one joint, that joint must reach tan(beta): the
+// factor is tan(beta) / 0.5 for the bed joint and tan(beta) / 1.0 for the upper one. Scaling
+// both together would need the larger of the two, tan(beta) / 0.5, either way.
+TEST(CriticalFriction, OnlyTheChosenJointIsScaled) {
+  const double beta = 20.0 * kPi / 180.0;
+  auto loaded = rbla::io::load_model_text(inclined_block(beta, 0.6, true).dump());
+  model::Model& m = loaded.model;
+  const int bed = interface_between(m, "base", "block"), upper = interface_between(m, "block", "top");
+  ASSERT_GE(bed, 0);
+  ASSERT_GE(upper, 0);
+  m.interfaces[bed].friction = 0.5;
+  m.interfaces[upper].friction = 1.0;
+  rbla::analysis::ThresholdSettings settings;
+  settings.tolerance = 1e-6;
+  for (const auto& [joint, given] : {std::pair{bed, 0.5}, std::pair{upper, 1.0}}) {
+    const auto c = rbla::analysis::find_critical_friction(m, std::nullopt, {}, settings, {joint});
+    ASSERT_EQ(c.outcome, ThresholdOutcome::Bracketed) << c.verdict_text;
+    EXPECT_TRUE(c.certified) << c.stop;
+    ASSERT_TRUE(c.uniform_friction);
+    EXPECT_EQ(*c.uniform_friction, given);
+    EXPECT_LT(relative_error(*c.factor_upper, std::tan(beta) / given), 2e-6) << joint;
+    EXPECT_EQ(c.scaled_interfaces, std::vector<int>{joint});
+    EXPECT_NE(c.verdict_text.find("of the 1 chosen interface times"), std::string::npos) << c.verdict_text;
+    // The other joint kept its coefficient in the analysis reported.
+    const int other = joint == bed ? upper : bed;
+    EXPECT_EQ(c.model_at_critical.interfaces[other].friction, m.interfaces[other].friction);
+  }
+  // Picked by block: the interfaces of "top" are the upper joint alone.
+  std::vector<std::string> unmatched;
+  EXPECT_EQ(m.interfaces_named({}, {"top"}, unmatched), std::vector<int>{upper});
+  EXPECT_EQ(m.interfaces_named({m.interfaces[bed].id, "nothing"}, {}, unmatched), std::vector<int>{bed});
+  EXPECT_EQ(unmatched, std::vector<std::string>{"nothing"});
 }
 
 TEST(CriticalFriction, AFlatStackStandsWithAnyFriction) {

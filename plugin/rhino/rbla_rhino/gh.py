@@ -123,10 +123,14 @@ def worst_direction(model_text, run=True, exe=None, timeout=None, tolerance=None
     return _run("worst_direction", model_text, run, exe, timeout, {"tolerance": tolerance or None})
 
 
-def critical_friction(model_text, run=True, exe=None, timeout=None, target_alpha=None):
+def critical_friction(model_text, run=True, exe=None, timeout=None, target_alpha=None,
+                      interfaces=None, interfaces_of=None):
     """As solve(), with ``rbla critical-friction``: the result is the analysis at the critical
-    friction; result.data["critical_friction"] holds the search."""
-    return _run("critical_friction", model_text, run, exe, timeout, {"target_alpha": target_alpha})
+    friction; result.data["critical_friction"] holds the search. ``interfaces`` (ids or labels)
+    and ``interfaces_of`` (block ids or labels) choose the joints scaled; empty: all."""
+    return _run("critical_friction", model_text, run, exe, timeout,
+                {"target_alpha": target_alpha, "interfaces": list(interfaces or []) or None,
+                 "interfaces_of": list(interfaces_of or []) or None})
 
 
 def _run(command, model_text, run, exe, timeout, options):

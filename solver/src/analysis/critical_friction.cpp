@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 namespace rbla::analysis {
 namespace {
@@ -25,17 +26,32 @@ std::string text(double value) {
   return out.str();
 }
 
-void check_request(const model::Model& m) {
+/// The interfaces to scale: `scaled`, or all of them when it is empty.
+std::vector<int> scaled_set(const model::Model& m, const std::vector<int>& scaled) {
   if (m.analysis.type != model::AnalysisType::LoadMultiplier) {
     throw model::ModelError("/analysis/type", "the critical friction is searched for a load_multiplier analysis");
   }
   if (m.interfaces.empty()) throw model::ModelError("/interfaces", "the model has no interface: no friction to scale");
+  std::vector<int> set = scaled;
+  if (set.empty()) {
+    for (std::size_t k = 0; k < m.interfaces.size(); ++k) set.push_back(static_cast<int>(k));
+  }
+  double largest = 0.0;
+  for (int k : set) {
+    if (k < 0 || static_cast<std::size_t>(k) >= m.interfaces.size()) {
+      throw model::ModelError("/interfaces", "interface index " + std::to_string(k) + " is out of range");
+    }
+    largest = std::max(largest, m.interfaces[k].friction);
+  }
+  // Scaling zero coefficients changes nothing: the search would have no parameter.
+  if (!(largest > 0.0)) throw model::ModelError("/interfaces", "every interface chosen has zero friction: nothing to scale");
+  return set;
 }
 
-std::optional<double> uniform_friction(const model::Model& m) {
-  const double first = m.interfaces.front().friction;
-  for (const auto& contact : m.interfaces) {
-    if (contact.friction != first) return std::nullopt;
+std::optional<double> uniform_friction(const model::Model& m, const std::vector<int>& set) {
+  const double first = m.interfaces[set.front()].friction;
+  for (int k : set) {
+    if (m.interfaces[k].friction != first) return std::nullopt;
   }
   return first;
 }
@@ -76,18 +92,23 @@ void conclude(CriticalFriction& c, const Threshold& t, bool associative) {
   c.factor_upper = t.upper;
   c.certified = t.converged && associative;
   const std::string friction = c.uniform_friction && t.upper ? " (mu = " + text(*c.uniform_friction * *t.upper) + ")" : "";
+  const std::string coefficients =
+      c.scaled_interfaces.empty() ? "the friction coefficients"
+                                  : "the friction coefficients of the " + std::to_string(c.scaled_interfaces.size()) +
+                                        " chosen interface" + (c.scaled_interfaces.size() == 1 ? "" : "s");
   switch (t.outcome) {
     case ThresholdOutcome::Bracketed:
-      c.verdict_text = "The structure needs the friction coefficients times " + text(*t.upper) + friction + " " +
+      c.verdict_text = "The structure needs " + coefficients + " times " + text(*t.upper) + friction + " " +
                        asked(c.target_alpha) + (c.certified ? "; certified" : "; not certified") + ": " + t.stop + ".";
       break;
     case ThresholdOutcome::PassesAtMinimum:
-      c.verdict_text = "The structure manages " + asked(c.target_alpha) + " even with the friction coefficients times " +
-                       text(*t.upper) + friction + ", the smallest factor tried: it hardly relies on friction for it.";
+      c.verdict_text = "The structure manages " + asked(c.target_alpha) + " even with " + coefficients + " times " +
+                       text(*t.upper) + friction + ", the smallest factor tried: it hardly relies on that friction for it.";
       break;
     case ThresholdOutcome::FailsAtMaximum:
-      c.verdict_text = "No friction up to mu = " + text(kLargestFriction) + " is enough " + asked(c.target_alpha) +
-                       ": overturning or the geometry governs (" + t.stop + ").";
+      c.verdict_text = "No friction up to mu = " + text(kLargestFriction) +
+                       (c.scaled_interfaces.empty() ? "" : " at the chosen interfaces") + " is enough " +
+                       asked(c.target_alpha) + ": overturning or the geometry governs (" + t.stop + ").";
       break;
     case ThresholdOutcome::Failed:
       c.verdict_text = "The search stopped: " + t.stop;
@@ -98,29 +119,31 @@ void conclude(CriticalFriction& c, const Threshold& t, bool associative) {
 }  // namespace
 
 CriticalFriction find_critical_friction(const model::Model& model, std::optional<double> target_alpha,
-                                        const AnalysisOptions& options, ThresholdSettings settings) {
-  check_request(model);
+                                        const AnalysisOptions& options, ThresholdSettings settings,
+                                        const std::vector<int>& scaled) {
+  const std::vector<int> set = scaled_set(model, scaled);
   const auto start = Clock::now();
   CriticalFriction c;
   c.target_alpha = target_alpha;
-  c.uniform_friction = uniform_friction(model);
+  if (!scaled.empty()) c.scaled_interfaces = set;
+  c.uniform_friction = uniform_friction(model, set);
   double largest = 0.0;
-  for (const auto& contact : model.interfaces) largest = std::max(largest, contact.friction);
+  for (int k : set) largest = std::max(largest, model.interfaces[k].friction);
   settings.max_x = std::min(settings.max_x, kLargestFriction / largest);
 
   double best_passing = std::numeric_limits<double>::infinity();
   auto evaluate = [&](double factor) {
     const auto evaluation_start = Clock::now();
-    model::Model scaled = model;
-    for (auto& contact : scaled.interfaces) contact.friction *= factor;
-    scaled.analysis.check_dead_load = true;  // standing is what every test asks first
-    AnalysisResult result = analyse(scaled, options);
+    model::Model at_factor = model;
+    for (int k : set) at_factor.interfaces[k].friction *= factor;
+    at_factor.analysis.check_dead_load = true;  // standing is what every test asks first
+    AnalysisResult result = analyse(at_factor, options);
     const ThresholdSample sample = as_sample(result, target_alpha);
     c.evaluations.push_back({factor, result.verdict, result.load_multiplier, sample.passes, seconds_since(evaluation_start)});
     if ((sample.passes && factor < best_passing) || c.evaluations.size() == 1 ||
         (!std::isfinite(best_passing) && !sample.passes)) {
       if (sample.passes) best_passing = factor;
-      c.model_at_critical = std::move(scaled);
+      c.model_at_critical = std::move(at_factor);
       c.at_critical = std::move(result);
     }
     return sample;

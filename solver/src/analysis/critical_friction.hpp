@@ -1,8 +1,10 @@
 // The smallest friction at which the structure stands under its own weight, or carries a given
-// load multiplier: every interface's coefficient scaled by one factor s (docs/critical_friction.md).
+// load multiplier: every interface's coefficient (or those of a chosen set) scaled by one factor
+// s (docs/critical_friction.md).
 //
-// Why a bracket is certified: with associative friction, a larger s enlarges every friction cone
-// and so the set of admissible contact forces; whatever is carried at s is carried at any larger
+// Why a bracket is certified: with associative friction, a larger s enlarges every scaled
+// friction cone and leaves the others as they are, and so enlarges the set of admissible contact
+// forces; whatever is carried at s is carried at any larger
 // s. "Stands" and "alpha >= target" are therefore monotone in s, every failing s is a lower and
 // every passing s an upper bound of the critical factor (analysis/threshold_search.hpp). With
 // non-associative friction this is not proven: the search runs the same way and says so.
@@ -32,7 +34,9 @@ struct CriticalFriction {
   std::string verdict_text;            ///< one sentence for people
   std::optional<double> factor_lower;  ///< largest s that failed
   std::optional<double> factor_upper;  ///< smallest s that passed: the critical factor reported
-  /// The coefficient the factor gives when every interface had the same one; else empty.
+  /// The interfaces scaled (indices into model.interfaces); empty: all of them.
+  std::vector<int> scaled_interfaces;
+  /// The coefficient the factor gives when every scaled interface had the same one; else empty.
   std::optional<double> uniform_friction;
   bool certified = false;  ///< bracketed within the tolerance, associative friction
   std::string stop;
@@ -42,8 +46,11 @@ struct CriticalFriction {
   double seconds = 0.0;
 };
 
-/// Throws model::ModelError when the model is not a load-multiplier analysis or has no interface.
+/// Scales the interfaces in `scaled` (indices into model.interfaces), or every interface when it
+/// is empty. Throws model::ModelError when the model is not a load-multiplier analysis, has no
+/// interface, or `scaled` holds an index out of range or an interface without friction only.
 CriticalFriction find_critical_friction(const model::Model& model, std::optional<double> target_alpha,
-                                        const AnalysisOptions& options = {}, ThresholdSettings settings = {});
+                                        const AnalysisOptions& options = {}, ThresholdSettings settings = {},
+                                        const std::vector<int>& scaled = {});
 
 }  // namespace rbla::analysis

@@ -50,13 +50,18 @@ void append_axes(std::string& out, const Axes& a, const std::string& x_label) {
 
 }  // namespace
 
-json critical_friction_json(const analysis::CriticalFriction& c, double tolerance) {
+json critical_friction_json(const model::Model& model, const analysis::CriticalFriction& c, double tolerance) {
   json evaluations = json::array();
   for (const auto& e : c.evaluations) evaluations.push_back(evaluation_json(e));
   json out{{"outcome", outcome_name(c.outcome)}, {"verdict", c.verdict_text},   {"certified", c.certified},
            {"tolerance", tolerance},             {"stop", c.stop},              {"num_evaluations", static_cast<int>(c.evaluations.size())},
            {"seconds", c.seconds},               {"evaluations", evaluations}};
   if (c.target_alpha) out["target_load_multiplier"] = *c.target_alpha;
+  if (!c.scaled_interfaces.empty()) {
+    json ids = json::array();
+    for (int k : c.scaled_interfaces) ids.push_back(model.interfaces[static_cast<std::size_t>(k)].id);
+    out["scaled_interfaces"] = ids;
+  }
   if (c.factor_lower) out["factor_lower"] = *c.factor_lower;
   if (c.factor_upper) out["factor"] = *c.factor_upper;
   if (c.uniform_friction) {

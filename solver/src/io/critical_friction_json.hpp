@@ -10,9 +10,11 @@
 
 namespace rbla::io {
 
-/// Factors (dimensionless) scale every interface's friction coefficient; `friction` gives the
-/// coefficient itself when all interfaces share one.
-nlohmann::json critical_friction_json(const analysis::CriticalFriction& search, double tolerance);
+/// Factors (dimensionless) scale every interface's friction coefficient, or those of the chosen
+/// interfaces (listed by id); `friction` gives the coefficient itself when all scaled interfaces
+/// share one.
+nlohmann::json critical_friction_json(const model::Model& model, const analysis::CriticalFriction& search,
+                                      double tolerance);
 
 /// The load multiplier of every factor evaluated against the friction coefficient (or the
 /// factor): passing evaluations filled, failing ones hollow, the critical value marked.

@@ -236,6 +236,12 @@ struct Model {
   /// is along x) projected on the plane normal to gravity, and up cross that, so that angles
   /// turn counter-clockwise seen from above. With gravity along -z: +x and +y.
   std::pair<Vec3, Vec3> horizontal_axes() const;
+  /// The interfaces (ascending indices) whose id or label is one of `interface_names`, or that
+  /// touch a block whose id or label is one of `block_names`. Names that pick nothing are
+  /// appended to `unmatched`.
+  std::vector<int> interfaces_named(const std::vector<std::string>& interface_names,
+                                    const std::vector<std::string>& block_names,
+                                    std::vector<std::string>& unmatched) const;
 };
 
 }  // namespace rbla::model

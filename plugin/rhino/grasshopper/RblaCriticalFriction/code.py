@@ -21,7 +21,9 @@ log = []
 if model:
     try:
         result, res, log = gh.critical_friction(model, run=bool(run), exe=exe, timeout=timeout,
-                                                target_alpha=target_alpha)
+                                                target_alpha=target_alpha,
+                                                interfaces=[i for i in (interfaces or []) if i],
+                                                interfaces_of=[b for b in (interfaces_of or []) if b])
         if res is not None:
             search = res.data.get("critical_friction", {})
             verdict = search.get("verdict")
