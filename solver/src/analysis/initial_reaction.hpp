@@ -17,8 +17,11 @@
 //   reports at collapse.
 //
 // Each group of free blocks connected by free-free interfaces is its own rigid body. The spring
-// stiffness cancels out. Without tangential springs the normal pressure must carry the dead
-// loads on its own; when it cannot (a horizontal dead load on a flat base), R₀ is not defined.
+// stiffness cancels out. Without tangential springs the normal pressure carries the dead loads
+// on the motions it resists; a motion it resists a thousand times less than the stiffest (the
+// sliding of a base that is flat but for CAD imprecision) is held still, and the small part of
+// the load along it (up to 5 %) is left to friction. When more is left (a horizontal dead load on
+// a flat base), R₀ is not defined.
 #pragma once
 
 #include "model/model.hpp"
