@@ -1,30 +1,19 @@
 #include "analysis/critical_friction.hpp"
 
+#include "analysis/text.hpp"
 #include "model/errors.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <string>
 
 namespace rbla::analysis {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 /// The schema's largest friction coefficient: the search does not scale beyond it.
 constexpr double kLargestFriction = 100.0;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-std::string text(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
-}
 
 /// The interfaces to scale: `scaled`, or all of them when it is empty.
 std::vector<int> scaled_set(const model::Model& m, const std::vector<int>& scaled) {
@@ -82,7 +71,7 @@ ThresholdSample as_sample(const AnalysisResult& r, std::optional<double> target)
 }
 
 std::string asked(std::optional<double> target) {
-  return target ? "to carry alpha = " + text(*target) : std::string("to stand under its own weight");
+  return target ? "to carry alpha = " + format(*target) : std::string("to stand under its own weight");
 }
 
 void conclude(CriticalFriction& c, const Threshold& t, bool associative) {
@@ -91,22 +80,22 @@ void conclude(CriticalFriction& c, const Threshold& t, bool associative) {
   c.factor_lower = t.lower;
   c.factor_upper = t.upper;
   c.certified = t.converged && associative;
-  const std::string friction = c.uniform_friction && t.upper ? " (mu = " + text(*c.uniform_friction * *t.upper) + ")" : "";
+  const std::string friction = c.uniform_friction && t.upper ? " (mu = " + format(*c.uniform_friction * *t.upper) + ")" : "";
   const std::string coefficients =
       c.scaled_interfaces.empty() ? "the friction coefficients"
                                   : "the friction coefficients of the " + std::to_string(c.scaled_interfaces.size()) +
                                         " chosen interface" + (c.scaled_interfaces.size() == 1 ? "" : "s");
   switch (t.outcome) {
     case ThresholdOutcome::Bracketed:
-      c.verdict_text = "The structure needs " + coefficients + " times " + text(*t.upper) + friction + " " +
+      c.verdict_text = "The structure needs " + coefficients + " times " + format(*t.upper) + friction + " " +
                        asked(c.target_alpha) + (c.certified ? "; certified" : "; not certified") + ": " + t.stop + ".";
       break;
     case ThresholdOutcome::PassesAtMinimum:
       c.verdict_text = "The structure manages " + asked(c.target_alpha) + " even with " + coefficients + " times " +
-                       text(*t.upper) + friction + ", the smallest factor tried: it hardly relies on that friction for it.";
+                       format(*t.upper) + friction + ", the smallest factor tried: it hardly relies on that friction for it.";
       break;
     case ThresholdOutcome::FailsAtMaximum:
-      c.verdict_text = "No friction up to mu = " + text(kLargestFriction) +
+      c.verdict_text = "No friction up to mu = " + format(kLargestFriction) +
                        (c.scaled_interfaces.empty() ? "" : " at the chosen interfaces") + " is enough " +
                        asked(c.target_alpha) + ": overturning or the geometry governs (" + t.stop + ").";
       break;

@@ -8,13 +8,6 @@
 
 namespace rbla::analysis {
 
-std::string format(double value, int precision) {
-  std::ostringstream out;
-  out.precision(precision);
-  out << value;
-  return out.str();
-}
-
 std::string quoted_block_ids(const model::Model& m, const std::vector<int>& blocks, std::size_t shown) {
   std::string text;
   for (std::size_t k = 0; k < blocks.size() && k < shown; ++k) {

@@ -6,6 +6,7 @@
 #include "analysis/analysis_result.hpp"
 #include "analysis/formulation.hpp"
 #include "analysis/limit_analysis.hpp"
+#include "analysis/text.hpp"
 #include "model/model.hpp"
 #include "rbla/conic/solver.hpp"
 
@@ -16,12 +17,6 @@
 
 namespace rbla::analysis {
 
-using Clock = std::chrono::steady_clock;
-
-inline double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 /// The analysis's time budget (model.analysis.time_limit; 0 or less is no limit).
 struct Deadline {
   Clock::time_point start = Clock::now();
@@ -31,9 +26,6 @@ struct Deadline {
     return std::max(0.0, limit_seconds - seconds_since(start));
   }
 };
-
-/// A number for messages, `precision` significant digits.
-std::string format(double value, int precision = 6);
 
 /// Block ids for messages: the first `shown` of `blocks` (indices into model.blocks), quoted,
 /// then how many more there are.

@@ -1,18 +1,11 @@
 #include "analysis/threshold_search.hpp"
 
+#include "analysis/text.hpp"
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace rbla::analysis {
 namespace {
-
-std::string text(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
-}
 
 /// The bracket's two ends with the values the chord uses (Illinois-scaled).
 struct Bracket {
@@ -76,8 +69,8 @@ Threshold find_threshold(const std::function<ThresholdSample(double x)>& evaluat
   if (far != x && !take(far)) return out;
   if (out.samples.back().passes == first_passes) {
     out.outcome = first_passes ? ThresholdOutcome::PassesAtMinimum : ThresholdOutcome::FailsAtMaximum;
-    out.stop = first_passes ? "passes at every value tried, down to " + text(far)
-                            : "fails at every value tried, up to " + text(far);
+    out.stop = first_passes ? "passes at every value tried, down to " + format(far)
+                            : "fails at every value tried, up to " + format(far);
     return out;
   }
   for (;;) {
@@ -104,14 +97,14 @@ Threshold find_threshold(const std::function<ThresholdSample(double x)>& evaluat
   while (b.hi - b.lo > settings.tolerance * b.hi) {
     if (out_of_samples()) {
       out.stop = "stopped at " + std::to_string(settings.max_samples) + " evaluations with the bracket [" +
-                 text(b.lo) + ", " + text(b.hi) + "]";
+                 format(b.lo) + ", " + format(b.hi) + "]";
       return out;
     }
     if (!take(next_x(b, 0.4 * settings.tolerance * b.hi))) return out;
     update(b, out.samples.back());
   }
   out.converged = true;
-  out.stop = "bracketed within the tolerance: [" + text(b.lo) + ", " + text(b.hi) + "]";
+  out.stop = "bracketed within the tolerance: [" + format(b.lo) + ", " + format(b.hi) + "]";
   return out;
 }
 

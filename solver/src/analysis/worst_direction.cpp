@@ -1,22 +1,16 @@
 #include "analysis/worst_direction.hpp"
 
+#include "analysis/text.hpp"
 #include "model/errors.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <tuple>
 
 namespace rbla::analysis {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr double kPi = 3.14159265358979323846;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 void check_request(const model::Model& m) {
   if (m.analysis.type != model::AnalysisType::LoadMultiplier) {
@@ -66,18 +60,11 @@ RadialSample as_sample(const AnalysisResult& r) {
   return sample;
 }
 
-std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
-}
-
 void conclude(WorstDirection& w, const RadialMinimum& search, const RadialSearchSettings& settings) {
   w.stop = search.stop;
   if (search.failed) {
     w.verdict = w.evaluations.back().verdict;
-    w.verdict_text = "The search stopped at " + number_text(w.evaluations.back().angle * 180.0 / kPi) +
+    w.verdict_text = "The search stopped at " + format(w.evaluations.back().angle * 180.0 / kPi) +
                      " degrees: " + search.stop;
     return;
   }
@@ -92,9 +79,9 @@ void conclude(WorstDirection& w, const RadialMinimum& search, const RadialSearch
   w.angle = best.angle;
   w.lower_bound = search.lower_bound;
   w.certified = search.converged && settings.convex;
-  w.verdict_text = "Weakest horizontal direction at " + number_text(best.angle * 180.0 / kPi) +
-                   " degrees: collapse at load multiplier alpha = " + number_text(best.radius) +
-                   (w.certified ? ", the global minimum to within " + number_text(settings.tolerance * 100.0) + " %"
+  w.verdict_text = "Weakest horizontal direction at " + format(best.angle * 180.0 / kPi) +
+                   " degrees: collapse at load multiplier alpha = " + format(best.radius) +
+                   (w.certified ? ", the global minimum to within " + format(settings.tolerance * 100.0) + " %"
                                 : std::string(", not certified as the global minimum (") + search.stop + ")") +
                    ".";
 }
