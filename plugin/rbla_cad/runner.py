@@ -223,6 +223,23 @@ class Runner(object):
             extra += ["--max-directions", str(int(max_directions))]
         return self._analysis("worst-direction", extra, model, **_analysis_kwargs(kwargs))
 
+    def worst_settlement(self, model, cone_angle=None, tolerance=None, max_directions=None,
+                         **kwargs):
+        """``rbla worst-settlement``: the settlement direction of the moving supports, within
+        ``cone_angle`` degrees of gravity (default 30), that leaves the largest fraction R/R0
+        of the initial reaction at collapse. The outcome's result is the settlement analysis
+        along it; ``result.data["worst_settlement"]`` holds the search (ratio, tilt, azimuth,
+        certified upper bound, every direction tried). Other keyword arguments as for
+        solve()."""
+        extra = []
+        if cone_angle is not None:
+            extra += ["--cone-angle", repr(float(cone_angle))]
+        if tolerance is not None:
+            extra += ["--tolerance", repr(float(tolerance))]
+        if max_directions is not None:
+            extra += ["--max-directions", str(int(max_directions))]
+        return self._analysis("worst-settlement", extra, model, **_analysis_kwargs(kwargs))
+
     def critical_friction(self, model, target_alpha=None, tolerance=None, interfaces=None,
                           interfaces_of=None, **kwargs):
         """``rbla critical-friction``: the smallest factor on every friction coefficient (or on

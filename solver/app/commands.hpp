@@ -21,6 +21,7 @@ Command add_solve(CLI::App& app, CommonOptions& options);
 Command add_validate(CLI::App& app, CommonOptions& options);
 Command add_info(CLI::App& app, CommonOptions& options);
 Command add_worst_direction(CLI::App& app, CommonOptions& options);
+Command add_worst_settlement(CLI::App& app, CommonOptions& options);
 Command add_critical_friction(CLI::App& app, CommonOptions& options);
 /// `command_line`: the program's arguments, which the sweep passes on to the tasks it starts.
 Command add_sweep(CLI::App& app, CommonOptions& options, std::vector<std::string> command_line);

@@ -22,9 +22,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   CommonOptions options;
   const std::vector<Command> commands = {
-      add_solve(app, options),           add_validate(app, options),
-      add_info(app, options),            add_worst_direction(app, options),
-      add_critical_friction(app, options), add_sweep(app, options, std::vector<std::string>(argv, argv + argc))};
+      add_solve(app, options),
+      add_validate(app, options),
+      add_info(app, options),
+      add_worst_direction(app, options),
+      add_worst_settlement(app, options),
+      add_critical_friction(app, options),
+      add_sweep(app, options, std::vector<std::string>(argv, argv + argc))};
 
   try {
     app.parse(argc, argv);

@@ -1,13 +1,17 @@
-// `rbla worst-direction` and `rbla critical-friction`: searches over analyses of the model
-// (analysis/worst_direction.hpp, analysis/critical_friction.hpp).
+// `rbla worst-direction`, `rbla worst-settlement` and `rbla critical-friction`: searches over
+// analyses of the model (analysis/worst_direction.hpp, analysis/worst_settlement.hpp,
+// analysis/critical_friction.hpp).
 #include "commands.hpp"
 
 #include "analysis/critical_friction.hpp"
 #include "analysis/worst_direction.hpp"
+#include "analysis/worst_settlement.hpp"
 #include "io/critical_friction_json.hpp"
 #include "io/worst_direction_json.hpp"
+#include "io/worst_settlement_json.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -71,6 +75,33 @@ int run_worst_direction(const CommonOptions& options, const analysis::RadialSear
   return code != kSuccess ? code : exit_code_of(w.verdict);
 }
 
+/// The cone's half angle comes in degrees from the command line.
+struct SettlementSearch {
+  double cone_angle_deg = 30.0;
+  analysis::ConeSearchSettings search;
+};
+
+int run_worst_settlement(const CommonOptions& options, const SettlementSearch& settings) {
+  const auto start = Clock::now();
+  const bool stdout_taken = check_paths(options, {"mechanism.svg", "worst_settlement.svg"});
+  io::LoadedModel loaded;
+  int exit_code = kSuccess;
+  if (!load(options, loaded, exit_code)) return exit_code;
+  progress(options, "searching the most harmful settlement direction within " +
+                        std::to_string(static_cast<int>(std::lround(settings.cone_angle_deg))) + " degrees of gravity");
+  analysis::WorstSettlementSettings search;
+  search.cone_angle = settings.cone_angle_deg * 3.14159265358979323846 / 180.0;
+  search.search = settings.search;
+  const analysis::WorstSettlement w = analysis::find_worst_settlement(loaded.model, analysis_options_of(options), search);
+  report_warnings(w.at_worst.warnings, options);
+  progress(options, std::to_string(w.evaluations.size()) + " directions in " + seconds_text(w.seconds) + "; " + w.stop);
+  (stdout_taken ? std::cerr : std::cout) << shown(w.verdict_text) << "\n";
+  ExtraOutput extra{"worst_settlement.svg", [&w] { return io::worst_settlement_svg(w); }, "worst_settlement",
+                    io::worst_settlement_json(loaded.model, w, settings.search.tolerance)};
+  const int code = write_analysis_outputs(options, w.model_at_worst, w.at_worst, loaded.timings, start, extra);
+  return code != kSuccess ? code : exit_code_of(w.verdict);
+}
+
 int run_critical_friction(const CommonOptions& options, const FrictionSearch& search) {
   const auto start = Clock::now();
   const bool stdout_taken = check_paths(options, {"mechanism.svg", "critical_friction.svg"});
@@ -117,6 +148,34 @@ Command add_worst_direction(CLI::App& app, CommonOptions& options) {
   add_input_limits(worst, options.limits);
 
   return {worst, [&options, settings] { return run_worst_direction(options, *settings); }};
+}
+
+Command add_worst_settlement(CLI::App& app, CommonOptions& options) {
+  auto settings = std::make_shared<SettlementSearch>();
+  CLI::App* worst = app.add_subcommand(
+      "worst-settlement", "Find the settlement direction, within a cone around gravity, that leaves the largest "
+                          "fraction of the initial reaction at collapse");
+  worst->add_option("model", options.model_path, "Model JSON file ('-' for standard input)")->required();
+  worst->add_option("-o,--output", options.output_path,
+                    "Result JSON at the most harmful direction, with a worst_settlement section ('-' for standard "
+                    "output)");
+  worst->add_option("--svg", options.svg_dir, "Folder for the mechanism and the map of the directions tried");
+  worst->add_option("--cone-angle", settings->cone_angle_deg, "Half angle of the cone of directions around gravity, degrees")
+      ->default_val(settings->cone_angle_deg)
+      ->check(CLI::Range(0.5, 80.0));
+  worst->add_option("--tolerance", settings->search.tolerance,
+                    "Stop when the certified bracket of the largest R/R0 is this narrow, relative")
+      ->default_val(settings->search.tolerance)
+      ->check(CLI::Range(1e-9, 0.5));
+  worst->add_option("--max-directions", settings->search.max_samples, "Directions evaluated in all, at most")
+      ->default_val(settings->search.max_samples)
+      ->check(CLI::Range(7, 1000));
+  worst->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
+  worst->add_flag("-v,--verbose", options.verbose, "Interior-point iteration logs and every warning");
+  worst->add_option("--threads", options.threads, "Threads per conic solve, 1 or 2")->check(CLI::Range(1, 2));
+  add_input_limits(worst, options.limits);
+
+  return {worst, [&options, settings] { return run_worst_settlement(options, *settings); }};
 }
 
 Command add_critical_friction(CLI::App& app, CommonOptions& options) {

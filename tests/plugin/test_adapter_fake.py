@@ -152,6 +152,11 @@ class AdapterTest(unittest.TestCase):
         self.assertEqual(json.loads(text)["worst_direction"]["certified"], True)
         text, res, log = self.gh.critical_friction(json.dumps(model), exe=EXE, target_alpha=0.3)
         self.assertEqual(res.data["critical_friction"]["outcome"], "bracketed")
+        with open(_support.sample("wall_settlement.json")) as f:
+            settling = json.load(f)
+        text, res, log = self.gh.worst_settlement(json.dumps(settling), exe=EXE, cone_angle=15)
+        self.assertTrue(res.data["worst_settlement"]["certified"])
+        self.assertLessEqual(res.data["worst_settlement"]["tilt_deg"], 15.0 + 1e-9)
         # Errors reach the component as runtime messages (a stand-in Grasshopper module here).
         import types
         levels = types.SimpleNamespace(Warning="warning", Error="error")

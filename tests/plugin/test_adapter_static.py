@@ -85,7 +85,7 @@ class ComponentTest(unittest.TestCase):
         gh = os.path.join(RHINO, "grasshopper")
         comps = sorted(d for d in os.listdir(gh) if os.path.isdir(os.path.join(gh, d)))
         self.assertEqual(comps, ["RblaCriticalFriction", "RblaLegend", "RblaMechanism", "RblaModel", "RblaSolve",
-                                 "RblaWorstDirection"])
+                                 "RblaWorstDirection", "RblaWorstSettlement"])
         for c in comps:
             with open(os.path.join(gh, c, "metadata.json")) as f:
                 meta = json.load(f)

@@ -184,6 +184,15 @@ class SolverRunTest(unittest.TestCase):
         with self.assertRaises(TypeError):
             self.runner.critical_friction(_support.sample("block.json"), target=0.3)
 
+    def test_worst_settlement(self):
+        out = self.runner.worst_settlement(_support.sample("wall_settlement.json"), cone_angle=20,
+                                           verbose=False)
+        search = out.result.data["worst_settlement"]
+        self.assertTrue(search["certified"])
+        self.assertLessEqual(search["tilt_deg"], 20.0 + 1e-9)
+        self.assertGreaterEqual(search["upper_bound"], search["ratio"])
+        self.assertEqual(jsonschema_lite.validate_result(out.result.data), [])
+
     def test_arch_sample(self):
         d = tempfile.mkdtemp()
         try:

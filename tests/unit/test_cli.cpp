@@ -218,6 +218,35 @@ TEST_F(Cli, WorstDirectionRefusesASettlementModelNamingTheField) {
   EXPECT_FALSE(fs::exists(path("w.json")));
 }
 
+TEST_F(Cli, WorstSettlementWritesAValidResultAtTheMostHarmfulDirection) {
+  const std::string sample = std::string(RBLA_SOURCE_DIR) + "/samples/wall_settlement.json";
+  const auto r = run("worst-settlement -q " + sample + " --cone-angle 20 -o " + path("w.json") + " --svg " +
+                     path("pictures"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Most harmful settlement direction"), std::string::npos) << r.output;
+  std::ifstream in(path("w.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
+  const auto result = nlohmann::json::parse(text.str());
+  const auto& w = result.at("worst_settlement");
+  EXPECT_TRUE(w.at("certified").get<bool>());
+  EXPECT_DOUBLE_EQ(w.at("cone_angle_deg").get<double>(), 20.0);
+  EXPECT_LE(w.at("tilt_deg").get<double>(), 20.0 + 1e-9);
+  EXPECT_GE(w.at("upper_bound").get<double>(), w.at("ratio").get<double>());
+  EXPECT_EQ(w.at("num_evaluations").get<int>(), static_cast<int>(w.at("evaluations").size()));
+  // The rest of the file is the settlement analysis along that direction.
+  EXPECT_DOUBLE_EQ(result.at("base_reaction").at("at_collapse").get<double>(), w.at("base_reaction").get<double>());
+  EXPECT_TRUE(fs::exists(path("pictures/worst_settlement.svg")));
+}
+
+TEST_F(Cli, WorstSettlementRefusesALoadMultiplierModelNamingTheField) {
+  const auto r = run("worst-settlement " + write("m.json", box_model()) + " -o " + path("w.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("/analysis/type"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("w.json")));
+}
+
 TEST_F(Cli, CriticalFrictionScalesTheInterfacesOfChosenBlocks) {
   const auto r = run("critical-friction -q " + write("m.json", box_model()) + " --interfaces-of B1 --target-alpha 0.3" +
                      " --tolerance 1e-6 -o " + path("c.json"));

@@ -1,6 +1,9 @@
 // The SVG pictures: well-formed XML, the right title, the rigid motion drawn where a hand
 // computation puts it, up on the page, auto view axis, escaping, convergence series.
 #include "io/svg_writer.hpp"
+#include "io/critical_friction_json.hpp"
+#include "io/worst_direction_json.hpp"
+#include "io/worst_settlement_json.hpp"
 #include "io/load_model.hpp"
 #include "support/model_builder.hpp"
 
@@ -442,4 +445,47 @@ TEST(SvgConvergence, HistoryFlatButForAnUlpHasFewTicks) {
   EXPECT_EQ(xml_problem(svg), "");
   EXPECT_LT(svg.size(), 100000u);
   EXPECT_LE(count(svg, "stroke=\"#e4e4e4\""), 40u);  // grid lines of both panels
+}
+
+// The search commands' pictures are well-formed XML with their captions, whatever the values
+// (a bound printed with a comparison sign once broke the XML).
+TEST(SvgSearches, WellFormedWithTheirCaptions) {
+  rbla::analysis::WorstSettlement settlement;
+  settlement.cone_angle = 0.5;
+  for (int k = 0; k < 4; ++k) {
+    rbla::analysis::SettlementEvaluation e;
+    e.tilt = k == 0 ? 0.0 : 0.5;
+    e.azimuth = 2.0 * k;
+    e.verdict = Verdict::Collapse;
+    e.base_reaction = 10.0 + k;
+    e.initial_reaction = 30.0;
+    e.ratio = (10.0 + k) / 30.0;
+    settlement.evaluations.push_back(e);
+  }
+  settlement.worst = 3;
+  settlement.ratio = 13.0 / 30.0;
+  settlement.upper_bound = 0.44;
+  std::string svg = rbla::io::worst_settlement_svg(settlement);
+  EXPECT_EQ(xml_problem(svg), "");
+  EXPECT_NE(svg.find("most harmful: R/R0 = 0.433333"), std::string::npos) << svg;
+  settlement.worst.reset();
+  settlement.upper_bound.reset();
+  EXPECT_EQ(xml_problem(rbla::io::worst_settlement_svg(settlement)), "");
+
+  rbla::analysis::WorstDirection direction;
+  direction.evaluations.push_back({0.0, Vec3::UnitX(), Verdict::Collapse, 0.3, 10, 0.1});
+  direction.evaluations.push_back({1.0, Vec3::UnitY(), Verdict::Collapse, 0.25, 10, 0.1});
+  direction.alpha_min = 0.25;
+  direction.angle = 1.0;
+  direction.lower_bound = 0.2499;
+  svg = rbla::io::worst_direction_svg(direction);
+  EXPECT_EQ(xml_problem(svg), "");
+
+  rbla::analysis::CriticalFriction friction;
+  friction.target_alpha = 0.3;
+  friction.evaluations.push_back({1.0, Verdict::Collapse, 0.45, true, 0.1});
+  friction.evaluations.push_back({0.5, Verdict::CannotStand, std::nullopt, false, 0.1});
+  friction.factor_upper = 1.0;
+  friction.uniform_friction = 0.6;
+  EXPECT_EQ(xml_problem(rbla::io::critical_friction_svg(friction)), "");
 }

@@ -123,6 +123,13 @@ def worst_direction(model_text, run=True, exe=None, timeout=None, tolerance=None
     return _run("worst_direction", model_text, run, exe, timeout, {"tolerance": tolerance or None})
 
 
+def worst_settlement(model_text, run=True, exe=None, timeout=None, tolerance=None, cone_angle=None):
+    """As solve(), with ``rbla worst-settlement``: the result is the settlement analysis along
+    the most harmful direction; result.data["worst_settlement"] holds the search."""
+    return _run("worst_settlement", model_text, run, exe, timeout,
+                {"tolerance": tolerance or None, "cone_angle": cone_angle or None})
+
+
 def critical_friction(model_text, run=True, exe=None, timeout=None, target_alpha=None,
                       interfaces=None, interfaces_of=None):
     """As solve(), with ``rbla critical-friction``: the result is the analysis at the critical
