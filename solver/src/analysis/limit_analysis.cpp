@@ -317,6 +317,18 @@ bool settle_verdict(const model::Model& m, const Formulation& formulation, conic
   return bounded;
 }
 
+/// The gap at which a search keeps the iterate for the next analysis (as the non-associative
+/// steps do): early enough to sit well inside the cone, late enough to carry the structure of
+/// the solution.
+constexpr double kSearchSnapshotGap = 1e-2;
+
+/// Starts `solver` from a search's previous point when it fits this problem.
+void warm_start_from(const conic::Iterate* point, const conic::ConicProblem& problem, conic::ConicSolver& solver) {
+  if (!point || point->empty()) return;
+  if (point->x.size() != problem.A.cols() || point->y.size() != problem.A.rows()) return;
+  solver.set_warm_start(point->x, point->y, point->z);
+}
+
 }  // namespace
 
 // The pipeline (STYLE.md, "analysis as a pipeline"): formulation, the connectivity check, the
@@ -345,9 +357,13 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
     return result;
   }
   const auto solve_start = Clock::now();
-  conic::ConicSolver solver(formulation.problem, solver_settings(request, options, deadline.left()));
+  conic::Settings settings = solver_settings(request, options, deadline.left());
+  if (options.warm_start) settings.snapshot_gap_rel = kSearchSnapshotGap;
+  conic::ConicSolver solver(formulation.problem, settings);
   if (options.progress) solver.set_progress_callback(options.progress);
+  warm_start_from(options.warm_start, formulation.problem, solver);
   conic::Solution solution = solver.solve();
+  if (options.warm_start && !solution.snapshot.empty()) *options.warm_start = solution.snapshot;
   result.solve_seconds += seconds_since(solve_start);
   result.solver_ran = true;
   result.solver_info = solution.info;

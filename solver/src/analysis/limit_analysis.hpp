@@ -22,6 +22,11 @@ struct AnalysisOptions {
   std::function<void(const conic::ConicProblem&)> problem_ready;
   /// Threads of each conic solve, 1 or 2 (conic::Settings::threads).
   int threads = 2;
+  /// A searching caller's memory between analyses of nearby models (the same scene with another
+  /// direction or friction): when set, the first conic solve starts from the point `warm_start`
+  /// holds if its dimensions match, and leaves there the point it passed at a relative gap of
+  /// 1e-2 (ConicSolver::set_warm_start, Skajaa, Andersen & Ye 2013).
+  conic::Iterate* warm_start = nullptr;
 };
 
 /// Runs the analysis the model requests (model.analysis). Throws model::ModelError only for

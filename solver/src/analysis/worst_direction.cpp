@@ -1,6 +1,7 @@
 #include "analysis/worst_direction.hpp"
 
 #include "analysis/text.hpp"
+#include "analysis/warm_starts.hpp"
 #include "model/errors.hpp"
 
 #include <cmath>
@@ -98,13 +99,21 @@ WorstDirection find_worst_direction(const model::Model& model, const AnalysisOpt
   search_settings.convex = model.analysis.friction_model == model::FrictionModel::Associative;
 
   double best_radius = std::numeric_limits<double>::infinity();
+  // Each direction starts from the interior point of the nearest one evaluated within 30 degrees
+  // (analysis/warm_starts.hpp).
+  WarmStarts points(2.0 * std::sin(kPi / 12.0));
   auto evaluate = [&](double angle) {
     const auto evaluation_start = Clock::now();
     model::Model turned = model;
     turned.analysis.seismic_direction = std::cos(angle) * w.axis_x + std::sin(angle) * w.axis_y;
     // Whether alpha = 0 is admissible does not depend on the direction: checked once.
     turned.analysis.check_dead_load = model.analysis.check_dead_load && w.evaluations.empty();
-    AnalysisResult result = analyse(turned, options);
+    const Eigen::VectorXd where = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    conic::Iterate start = points.nearest(where);
+    AnalysisOptions warm = options;
+    warm.warm_start = &start;
+    AnalysisResult result = analyse(turned, warm);
+    points.keep(where, std::move(start));
     RadialSample sample = as_sample(result);
     add_mechanism_bound(turned, result, w, sample);
     w.evaluations.push_back({angle, *turned.analysis.seismic_direction, result.verdict, result.load_multiplier,

@@ -1,7 +1,8 @@
 #include "analysis/worst_settlement.hpp"
 
-#include "analysis/text.hpp"
 #include "analysis/initial_reaction.hpp"
+#include "analysis/text.hpp"
+#include "analysis/warm_starts.hpp"
 #include "model/errors.hpp"
 
 #include <algorithm>
@@ -143,13 +144,20 @@ WorstSettlement find_worst_settlement(const model::Model& model, const AnalysisO
   search_settings.concave = associative;
 
   double best_ratio = -std::numeric_limits<double>::infinity();
+  // Each direction starts from the interior point of the nearest one evaluated within 15 degrees
+  // (analysis/warm_starts.hpp).
+  WarmStarts points(2.0 * std::sin(kPi / 24.0));
   auto evaluate = [&](const Eigen::Vector3d& direction) {
     const auto evaluation_start = Clock::now();
     model::Model turned = model;
     turned.analysis.settlement_direction = direction;
     // Whether the structure stands at all does not depend on the direction: checked once.
     turned.analysis.check_dead_load = model.analysis.check_dead_load && w.evaluations.empty();
-    AnalysisResult result = analyse(turned, options);
+    conic::Iterate start = points.nearest(direction);
+    AnalysisOptions warm = options;
+    warm.warm_start = &start;
+    AnalysisResult result = analyse(turned, warm);
+    points.keep(direction, std::move(start));
     SettlementEvaluation e;
     e.direction = direction;
     place(model, w.axis_x, w.axis_y, e);
