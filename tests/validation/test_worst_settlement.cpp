@@ -12,6 +12,7 @@
 //     R(theta) = N* cos(theta) - mu sin(theta) min(N*, W - N*).
 // Before settlement the base pressure is vertical, R0(theta) = R0 cos(theta), so R / R0 =
 // (N* - mu tan(theta) min(N*, W - N*)) / R0 is largest for vertical settlement.
+#include "analysis/sweep.hpp"
 #include "analysis/worst_settlement.hpp"
 #include "validation_helpers.hpp"
 
@@ -173,6 +174,24 @@ TEST(WorstSettlement, NeverBelowADenseSamplingOfTheCone) {
   }
   EXPECT_GE(*w.ratio, dense * (1.0 - 1e-3)) << "search " << *w.ratio << ", dense " << dense;
   EXPECT_GE(*w.upper_bound, dense * (1.0 - 1e-7)) << "bound " << *w.upper_bound << ", dense " << dense;
+}
+
+// The tilt and azimuth reported are the ones `rbla sweep` takes: sweeping settlement_tilt and
+// settlement_azimuth at them gives back the direction found.
+TEST(WorstSettlement, ItsAnglesAreTheSweepsAngles) {
+  const auto loaded = rbla::io::load_model_text(turned_wall(17.0 * kPi / 180.0).dump());
+  const WorstSettlement w = search(loaded.model, 25.0);
+  ASSERT_TRUE(w.worst);
+  const auto& e = w.evaluations[*w.worst];
+  ASSERT_GT(e.tilt, 0.1);
+  using rbla::analysis::SweepParameter;
+  const std::vector<rbla::analysis::SweepAxis> axes{{SweepParameter::SettlementTilt, 0.0, 80.0, 2},
+                                                    {SweepParameter::SettlementAzimuth, 0.0, 360.0, 2}};
+  rbla::analysis::SweepPoint point;
+  point.values = {e.tilt * 180.0 / kPi, e.azimuth * 180.0 / kPi};
+  const model::Model m = rbla::analysis::model_at(loaded.model, axes, point);
+  EXPECT_LT((m.analysis.settlement_direction - e.direction).norm(), 1e-12)
+      << m.analysis.settlement_direction.transpose() << " vs " << e.direction.transpose();
 }
 
 TEST(WorstSettlement, RefusesALoadMultiplierModelAndAModelWithoutAnInitialReaction) {
