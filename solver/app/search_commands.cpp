@@ -75,9 +75,11 @@ int run_worst_direction(const CommonOptions& options, const analysis::RadialSear
   return code != kSuccess ? code : exit_code_of(w.verdict);
 }
 
-/// The cone's half angle comes in degrees from the command line.
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+/// The cone's half angle comes in degrees from the command line (the default is the analysis's).
 struct SettlementSearch {
-  double cone_angle_deg = 30.0;
+  double cone_angle_deg = analysis::WorstSettlementSettings{}.cone_angle / kDegree;
   analysis::ConeSearchSettings search;
 };
 
@@ -90,7 +92,7 @@ int run_worst_settlement(const CommonOptions& options, const SettlementSearch& s
   progress(options, "searching the most harmful settlement direction within " +
                         std::to_string(static_cast<int>(std::lround(settings.cone_angle_deg))) + " degrees of gravity");
   analysis::WorstSettlementSettings search;
-  search.cone_angle = settings.cone_angle_deg * 3.14159265358979323846 / 180.0;
+  search.cone_angle = settings.cone_angle_deg * kDegree;
   search.search = settings.search;
   const analysis::WorstSettlement w = analysis::find_worst_settlement(loaded.model, analysis_options_of(options), search);
   report_warnings(w.at_worst.warnings, options);
