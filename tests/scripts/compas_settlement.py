@@ -9,8 +9,9 @@ come from rbla's own output:
     same base reaction and the same initial reaction;
   - the most harmful direction leans outwards, away from the other springing (an abutment that
     spreads is the classical worst case for an arch);
-  - a dense sampling of the cone with `rbla solve` (every 5 degrees of tilt, 10 of azimuth) finds
-    no ratio above the search's certified upper bound, nor more than the tolerance above its best.
+  - a sampling of the cone with `rbla solve` (every 10 degrees of tilt, 15 of azimuth: 73
+    directions, few enough for the sanitizer run) finds no ratio above the search's certified
+    upper bound, nor more than the tolerance above its best.
 
 Usage: compas_settlement.py SOURCE_DIR RBLA_BINARY
 """
@@ -57,8 +58,8 @@ def direction(tilt, azimuth):
 
 def dense_maximum(rbla, model, w, tmp):
     best = None
-    for tilt in range(0, 31, 5):
-        for azimuth in ([0] if tilt == 0 else range(0, 360, 10)):
+    for tilt in range(0, 31, 10):
+        for azimuth in ([0] if tilt == 0 else range(0, 360, 15)):
             model["analysis"]["settlement"] = {"direction": direction(tilt, azimuth)}
             path, result = os.path.join(tmp, "dense.json"), os.path.join(tmp, "dense_r.json")
             with open(path, "w") as f:
@@ -96,7 +97,7 @@ def main():
         if not w["certified"]:
             problems.append("not certified: " + w["stop"])
         dense = dense_maximum(rbla, model, w["initial_reaction_vector"], tmp)
-        print("dense sampling: largest R/R0 %.6g" % dense)
+        print("sampling of the cone: largest R/R0 %.6g" % dense)
         if w.get("upper_bound") is not None and w["upper_bound"] < dense * (1 - 1e-9):
             problems.append("upper bound %.9g below the dense sampling's %.9g" % (w["upper_bound"], dense))
         if w["ratio"] < dense * (1 - TOLERANCE):
