@@ -6,23 +6,15 @@
 For each scene and question (stand under the own weight; carry a target alpha), one `rbla solve`
 and one `rbla critical-friction` of the same model are timed in turn (--repeat pairs), so that
 the search's cost in single solves is measured in the same minutes on a shared machine. Each
-factor the search evaluates is a solve with the dead-load check (a second, small solve), so the
-cost is at least the number of factors. Standard library only; writes critical_friction.md and
-critical_friction.json into --out.
+factor the search evaluates is an analysis with the dead-load check (a second, small solve).
+Standard library only; writes critical_friction.md and critical_friction.json into --out.
 """
-import argparse
-import datetime
 import json
 import os
-import statistics
-import subprocess
 import sys
-import tempfile
-import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-GENERATOR = os.path.join(ROOT, "samples", "generate_samples.py")
+from search_runs import arguments, fmt, generate, report_failures, run_scenes, solve_against_search, write_report
+
 # (scene, generator arguments, target alpha or None to stand)
 SCENES = [
     ("facade, stand", ["facade", "--seismic", "x"], None),
@@ -32,40 +24,19 @@ SCENES = [
 ]
 
 
-def timed(command):
-    start = time.perf_counter()
-    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if done.returncode != 0:
-        raise RuntimeError(" ".join(command) + " failed: " + done.stderr[-2000:])
-    return time.perf_counter() - start
-
-
-def measure(rbla, name, args, target, repeat, work):
+def measure(rbla, repeat, scene, work):
+    name, args, target = scene
     model = os.path.join(work, "model.json")
-    subprocess.run([sys.executable, GENERATOR] + args + ["-o", model], check=True, stdout=subprocess.DEVNULL)
+    blocks = generate(args, model)
     search = [rbla, "critical-friction", model, "-q", "-o", os.path.join(work, "search.json")]
     if target is not None:
         search += ["--target-alpha", repr(target)]
-    solve_times, search_times = [], []
-    for _ in range(repeat):
-        solve_times.append(timed([rbla, "solve", model, "-q", "-o", os.path.join(work, "solve.json")]))
-        search_times.append(timed(search))
+    times = solve_against_search(rbla, model, search, repeat, work)
     with open(os.path.join(work, "search.json")) as f:
         c = json.load(f)["critical_friction"]
-    with open(model) as f:
-        blocks = len(json.load(f)["blocks"])
-    return {
-        "scene": name, "blocks": blocks, "outcome": c["outcome"], "factor": c.get("factor"),
-        "factor_lower": c.get("factor_lower"), "friction": c.get("friction"), "certified": c["certified"],
-        "evaluations": c["num_evaluations"], "single_solve_s": statistics.median(solve_times),
-        "search_s": statistics.median(search_times),
-        "solves_equivalent": statistics.median([b / a for a, b in zip(solve_times, search_times)]),
-        "stop": c["stop"],
-    }
-
-
-def fmt(value, spec):
-    return "-" if value is None else format(value, spec)
+    return dict(times, scene=name, blocks=blocks, outcome=c["outcome"], factor=c.get("factor"),
+                factor_lower=c.get("factor_lower"), friction=c.get("friction"), certified=c["certified"],
+                evaluations=c["num_evaluations"], stop=c["stop"])
 
 
 def markdown(rows, meta):
@@ -89,30 +60,12 @@ def markdown(rows, meta):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--rbla", default=os.path.join(ROOT, "build", "solver", "rbla"))
-    parser.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmark"))
-    parser.add_argument("--repeat", type=int, default=2)
-    parser.add_argument("--only", help="run only the scenes whose name contains this")
-    args = parser.parse_args()
-    meta = {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
-            "load_start": os.getloadavg()[0], "repeat": args.repeat}
-    rows = []
-    with tempfile.TemporaryDirectory() as work:
-        for name, gen_args, target in SCENES:
-            if args.only and args.only not in name:
-                continue
-            row = measure(args.rbla, name, gen_args, target, args.repeat, work)
-            print(f"{name}: factor {row['factor']} ({row['outcome']}), {row['evaluations']} factors, "
-                  f"cost {row['solves_equivalent']:.1f} solves", flush=True)
-            rows.append(row)
-    meta["load_end"] = os.getloadavg()[0]
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "critical_friction.md"), "w") as f:
-        f.write(markdown(rows, meta))
-    with open(os.path.join(args.out, "critical_friction.json"), "w") as f:
-        json.dump({"meta": meta, "rows": rows}, f, indent=1)
-    return 0
+    args = arguments(__doc__)
+    rows, meta = run_scenes(args, SCENES, lambda scene, work: measure(args.rbla, args.repeat, scene, work),
+                            lambda r: f"factor {r['factor']} ({r['outcome']}), {r['evaluations']} factors, "
+                                      f"cost {r['solves_equivalent']:.1f} solves")
+    write_report(args.out, "critical_friction", markdown(rows, meta), rows, meta)
+    return report_failures([("search failed", [r["scene"] for r in rows if r["outcome"] == "failed"])])
 
 
 if __name__ == "__main__":

@@ -10,20 +10,14 @@ minutes on a shared machine. On the scenes marked `dense`, alpha is also evaluat
 search claims a global minimum; a dense sampling is the independent check). Standard library only;
 writes worst_direction.md and worst_direction.json into --out.
 """
-import argparse
-import datetime
 import json
 import math
 import os
-import statistics
 import subprocess
 import sys
-import tempfile
-import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-GENERATOR = os.path.join(ROOT, "samples", "generate_samples.py")
+from search_runs import arguments, fmt, generate, report_failures, run_scenes, solve_against_search, write_report
+
 # The search's default tolerance (rbla worst-direction --tolerance).
 TOLERANCE = 1e-3
 IMPERFECT = ["--noise", "0.0005", "--warp", "0.002", "--joint-gap", "0.0005", "--split-faces", "0.3", "--rotate", "30"]
@@ -35,14 +29,6 @@ SCENES = [
     ("dome, imperfect", ["dome"] + IMPERFECT, True),
     ("vault, imperfect", ["vault"] + IMPERFECT, True),
 ]
-
-
-def timed(command):
-    start = time.perf_counter()
-    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if done.returncode != 0:
-        raise RuntimeError(" ".join(command) + " failed: " + done.stderr[-2000:])
-    return time.perf_counter() - start
 
 
 def along(model_path, angle_deg, out_path):
@@ -69,34 +55,22 @@ def dense_minimum(rbla, model_path, step, work):
     return min(values) if values else None
 
 
-def measure(rbla, name, args, dense, repeat, dense_step, work):
+def measure(args, scene, work):
+    name, gen_args, dense = scene
     model = os.path.join(work, "model.json")
-    subprocess.run([sys.executable, GENERATOR] + args + ["-o", model], check=True, stdout=subprocess.DEVNULL)
-    solve_times, search_times = [], []
+    blocks = generate(gen_args, model)
     result = os.path.join(work, "search.json")
-    for _ in range(repeat):
-        solve_times.append(timed([rbla, "solve", model, "-q", "-o", os.path.join(work, "solve.json")]))
-        search_times.append(timed([rbla, "worst-direction", model, "-q", "-o", result]))
+    times = solve_against_search(args.rbla, model, [args.rbla, "worst-direction", model, "-q", "-o", result],
+                                 args.repeat, work)
     with open(result) as f:
         w = json.load(f)["worst_direction"]
-    with open(os.path.join(work, "model.json")) as f:
-        blocks = len(json.load(f)["blocks"])
-    row = {
-        "scene": name, "blocks": blocks, "alpha_min": w.get("load_multiplier"), "angle_deg": w.get("angle_deg"),
-        "lower_bound": w.get("lower_bound"), "certified": w["certified"], "evaluations": w["num_evaluations"],
-        "single_solve_s": statistics.median(solve_times), "search_s": statistics.median(search_times),
-        "solves_equivalent": statistics.median([b / a for a, b in zip(solve_times, search_times)]),
-        "stop": w["stop"],
-        "alphas": [(e["angle_deg"], e.get("load_multiplier")) for e in w["evaluations"]],
-    }
+    row = dict(times, scene=name, blocks=blocks, alpha_min=w.get("load_multiplier"), angle_deg=w.get("angle_deg"),
+               lower_bound=w.get("lower_bound"), certified=w["certified"], evaluations=w["num_evaluations"],
+               stop=w["stop"], alphas=[(e["angle_deg"], e.get("load_multiplier")) for e in w["evaluations"]])
     if dense:
-        best = dense_minimum(rbla, model, dense_step, work)
+        best = dense_minimum(args.rbla, model, args.dense_step, work)
         row["dense_minimum"], row["dense_angle_deg"] = best if best else (None, None)
     return row
-
-
-def fmt(value, spec):
-    return "-" if value is None else format(value, spec)
 
 
 def markdown(rows, meta):
@@ -124,40 +98,21 @@ def markdown(rows, meta):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--rbla", default=os.path.join(ROOT, "build", "solver", "rbla"))
-    parser.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmark"))
-    parser.add_argument("--repeat", type=int, default=2)
-    parser.add_argument("--dense-step", type=float, default=5.0)
-    parser.add_argument("--only", help="run only the scenes whose name contains this")
-    args = parser.parse_args()
-    meta = {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
-            "load_start": os.getloadavg()[0], "repeat": args.repeat, "dense_step": args.dense_step}
-    rows = []
-    with tempfile.TemporaryDirectory() as work:
-        for name, gen_args, dense in SCENES:
-            if args.only and args.only not in name:
-                continue
-            row = measure(args.rbla, name, gen_args, dense, args.repeat, args.dense_step, work)
-            print(f"{name}: alpha_min {row['alpha_min']} at {row['angle_deg']} deg, {row['evaluations']} directions, "
-                  f"cost {row['solves_equivalent']:.1f} solves, dense {row.get('dense_minimum')}", flush=True)
-            rows.append(row)
-    meta["load_end"] = os.getloadavg()[0]
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "worst_direction.md"), "w") as f:
-        f.write(markdown(rows, meta))
-    with open(os.path.join(args.out, "worst_direction.json"), "w") as f:
-        json.dump({"meta": meta, "rows": rows}, f, indent=1)
+    args = arguments(__doc__, lambda parser: parser.add_argument("--dense-step", type=float, default=5.0))
+    rows, meta = run_scenes(args, SCENES, lambda scene, work: measure(args, scene, work),
+                            lambda r: f"alpha_min {r['alpha_min']} at {r['angle_deg']} deg, {r['evaluations']} "
+                                      f"directions, cost {r['solves_equivalent']:.1f} solves, dense {r.get('dense_minimum')}")
+    meta["dense_step"] = args.dense_step
+    write_report(args.out, "worst_direction", markdown(rows, meta), rows, meta)
     # The certificate: the lower bound is below every alpha (the dense sampling's too), and a
     # certified minimum is within the tolerance of the dense sampling's.
-    broken = [r["scene"] for r in rows if r.get("dense_minimum") is not None and r["lower_bound"] is not None
-              and r["lower_bound"] > r["dense_minimum"] * (1 + 1e-9)]
-    worse = [r["scene"] for r in rows if r.get("dense_minimum") is not None and r["certified"]
-             and r["alpha_min"] > r["dense_minimum"] * (1 + TOLERANCE)]
-    for what, scenes in (("lower bound above the dense sampling", broken), ("certified minimum above the dense sampling", worse)):
-        if scenes:
-            print(what + " on: " + ", ".join(scenes), file=sys.stderr)
-    return 1 if broken or worse else 0
+    dense = [r for r in rows if r.get("dense_minimum") is not None]
+    return report_failures([
+        ("lower bound above the dense sampling",
+         [r["scene"] for r in dense if r["lower_bound"] is not None and r["lower_bound"] > r["dense_minimum"] * (1 + 1e-9)]),
+        ("certified minimum above the dense sampling",
+         [r["scene"] for r in dense if r["certified"] and r["alpha_min"] > r["dense_minimum"] * (1 + TOLERANCE)]),
+    ])
 
 
 if __name__ == "__main__":

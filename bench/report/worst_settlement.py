@@ -11,20 +11,14 @@ of azimuth), and the search must not end below the largest of them by more than 
 its certified upper bound below it. Standard library only; writes worst_settlement.md and
 worst_settlement.json into --out.
 """
-import argparse
-import datetime
 import json
 import math
 import os
-import statistics
 import subprocess
 import sys
-import tempfile
-import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-GENERATOR = os.path.join(ROOT, "samples", "generate_samples.py")
+from search_runs import arguments, fmt, generate, report_failures, run_scenes, solve_against_search, write_report
+
 # The search's defaults (rbla worst-settlement --tolerance, --cone-angle).
 TOLERANCE = 1e-3
 CONE = 30.0
@@ -36,14 +30,6 @@ SCENES = [
     ("facade", ["facade", "--settling-fraction", "0.5"], False),
     ("church", ["church", "--load", "settlement"], False),
 ]
-
-
-def timed(command):
-    start = time.perf_counter()
-    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if done.returncode != 0:
-        raise RuntimeError(" ".join(command) + " failed: " + done.stderr[-2000:])
-    return time.perf_counter() - start
 
 
 def unit(v):
@@ -92,35 +78,22 @@ def dense_maximum(rbla, model_path, w, tilt_step, azimuth_step, work):
     return best
 
 
-def measure(rbla, name, args, dense, options, work):
+def measure(args, scene, work):
+    name, gen_args, dense = scene
     model = os.path.join(work, "model.json")
-    subprocess.run([sys.executable, GENERATOR] + args + ["-o", model], check=True, stdout=subprocess.DEVNULL)
-    solve_times, search_times = [], []
+    blocks = generate(gen_args, model)
     result = os.path.join(work, "search.json")
-    for _ in range(options.repeat):
-        solve_times.append(timed([rbla, "solve", model, "-q", "-o", os.path.join(work, "solve.json")]))
-        search_times.append(timed([rbla, "worst-settlement", model, "-q", "-o", result]))
+    times = solve_against_search(args.rbla, model, [args.rbla, "worst-settlement", model, "-q", "-o", result],
+                                 args.repeat, work)
     with open(result) as f:
         w = json.load(f)["worst_settlement"]
-    with open(model) as f:
-        blocks = len(json.load(f)["blocks"])
-    row = {
-        "scene": name, "blocks": blocks, "ratio": w.get("ratio"), "tilt_deg": w.get("tilt_deg"),
-        "azimuth_deg": w.get("azimuth_deg"), "upper_bound": w.get("upper_bound"), "certified": w["certified"],
-        "evaluations": w["num_evaluations"], "single_solve_s": statistics.median(solve_times),
-        "search_s": statistics.median(search_times),
-        "solves_equivalent": statistics.median([b / a for a, b in zip(solve_times, search_times)]),
-        "stop": w["stop"],
-        "vertical_ratio": w["evaluations"][0].get("ratio"),
-    }
+    row = dict(times, scene=name, blocks=blocks, ratio=w.get("ratio"), tilt_deg=w.get("tilt_deg"),
+               azimuth_deg=w.get("azimuth_deg"), upper_bound=w.get("upper_bound"), certified=w["certified"],
+               evaluations=w["num_evaluations"], stop=w["stop"], vertical_ratio=w["evaluations"][0].get("ratio"))
     if dense:
-        best = dense_maximum(rbla, model, w["initial_reaction_vector"], options.dense_tilt, options.dense_azimuth, work)
+        best = dense_maximum(args.rbla, model, w["initial_reaction_vector"], args.dense_tilt, args.dense_azimuth, work)
         row["dense_maximum"], row["dense_tilt_deg"], row["dense_azimuth_deg"] = best if best else (None, None, None)
     return row
-
-
-def fmt(value, spec):
-    return "-" if value is None else format(value, spec)
 
 
 def markdown(rows, meta):
@@ -151,42 +124,23 @@ def markdown(rows, meta):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--rbla", default=os.path.join(ROOT, "build", "solver", "rbla"))
-    parser.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmark"))
-    parser.add_argument("--repeat", type=int, default=2)
-    parser.add_argument("--dense-tilt", type=float, default=5.0)
-    parser.add_argument("--dense-azimuth", type=float, default=10.0)
-    parser.add_argument("--only", help="run only the scenes whose name contains this")
-    args = parser.parse_args()
-    meta = {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
-            "load_start": os.getloadavg()[0], "repeat": args.repeat, "dense_tilt": args.dense_tilt,
-            "dense_azimuth": args.dense_azimuth}
-    rows = []
-    with tempfile.TemporaryDirectory() as work:
-        for name, gen_args, dense in SCENES:
-            if args.only and args.only not in name:
-                continue
-            row = measure(args.rbla, name, gen_args, dense, args, work)
-            print(f"{name}: R/R0 {row['ratio']} at tilt {row['tilt_deg']}, azimuth {row['azimuth_deg']}, "
-                  f"{row['evaluations']} directions, cost {row['solves_equivalent']:.1f} solves, "
-                  f"dense {row.get('dense_maximum')}", flush=True)
-            rows.append(row)
-    meta["load_end"] = os.getloadavg()[0]
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "worst_settlement.md"), "w") as f:
-        f.write(markdown(rows, meta))
-    with open(os.path.join(args.out, "worst_settlement.json"), "w") as f:
-        json.dump({"meta": meta, "rows": rows}, f, indent=1)
-    broken = [r["scene"] for r in rows if r.get("dense_maximum") is not None and r["upper_bound"] is not None
-              and r["upper_bound"] < r["dense_maximum"] * (1 - 1e-9)]
-    worse = [r["scene"] for r in rows if r.get("dense_maximum") is not None and r["certified"]
-             and r["ratio"] < r["dense_maximum"] * (1 - TOLERANCE)]
-    for what, scenes in (("upper bound below the dense sampling", broken),
-                         ("certified maximum below the dense sampling", worse)):
-        if scenes:
-            print(what + " on: " + ", ".join(scenes), file=sys.stderr)
-    return 1 if broken or worse else 0
+    def extra(parser):
+        parser.add_argument("--dense-tilt", type=float, default=5.0)
+        parser.add_argument("--dense-azimuth", type=float, default=10.0)
+    args = arguments(__doc__, extra)
+    rows, meta = run_scenes(args, SCENES, lambda scene, work: measure(args, scene, work),
+                            lambda r: f"R/R0 {r['ratio']} at tilt {r['tilt_deg']}, azimuth {r['azimuth_deg']}, "
+                                      f"{r['evaluations']} directions, cost {r['solves_equivalent']:.1f} solves, "
+                                      f"dense {r.get('dense_maximum')}")
+    meta.update(dense_tilt=args.dense_tilt, dense_azimuth=args.dense_azimuth)
+    write_report(args.out, "worst_settlement", markdown(rows, meta), rows, meta)
+    dense = [r for r in rows if r.get("dense_maximum") is not None]
+    return report_failures([
+        ("upper bound below the dense sampling",
+         [r["scene"] for r in dense if r["upper_bound"] is not None and r["upper_bound"] < r["dense_maximum"] * (1 - 1e-9)]),
+        ("certified maximum below the dense sampling",
+         [r["scene"] for r in dense if r["certified"] and r["ratio"] < r["dense_maximum"] * (1 - TOLERANCE)]),
+    ])
 
 
 if __name__ == "__main__":
