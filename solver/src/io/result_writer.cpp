@@ -1,6 +1,7 @@
 #include "io/result_writer.hpp"
 
 #include "io/detection_json.hpp"
+#include "io/json_values.hpp"
 #include "io/sensitivities_json.hpp"
 #include "io/warning_summary.hpp"
 
@@ -12,7 +13,6 @@ using nlohmann::json;
 
 namespace {
 
-json vec3_json(const model::Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 
 /// The result schema's `solver.status` names (conic::to_string gives the log's wording instead).
 const char* status_name(conic::SolveStatus status) {

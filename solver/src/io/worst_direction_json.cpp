@@ -1,5 +1,6 @@
 #include "io/worst_direction_json.hpp"
 
+#include "io/json_values.hpp"
 #include "io/number_text.hpp"
 
 #include <algorithm>
@@ -13,13 +14,9 @@ namespace {
 using nlohmann::json;
 constexpr double kPi = 3.14159265358979323846;
 
-double degrees(double radians) { return radians * 180.0 / kPi; }
-
-json vec(const model::Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
-
 json evaluation_json(const analysis::DirectionEvaluation& e) {
   json out{{"angle_deg", degrees(e.angle)},
-           {"direction", vec(e.direction)},
+           {"direction", vec3_json(e.direction)},
            {"status", analysis::to_string(e.verdict)},
            {"interior_point_iterations", e.interior_point_iterations},
            {"seconds", e.seconds}};
@@ -37,15 +34,15 @@ json worst_direction_json(const analysis::WorstDirection& w, double tolerance) {
            {"certified", w.certified},
            {"tolerance", tolerance},
            {"stop", w.stop},
-           {"angle_zero", vec(w.axis_x)},
-           {"angle_ninety", vec(w.axis_y)},
+           {"angle_zero", vec3_json(w.axis_x)},
+           {"angle_ninety", vec3_json(w.axis_y)},
            {"num_evaluations", static_cast<int>(w.evaluations.size())},
            {"seconds", w.seconds},
            {"evaluations", evaluations}};
   if (w.alpha_min) out["load_multiplier"] = *w.alpha_min;
   if (w.angle) {
     out["angle_deg"] = degrees(*w.angle);
-    out["direction"] = vec(std::cos(*w.angle) * w.axis_x + std::sin(*w.angle) * w.axis_y);
+    out["direction"] = vec3_json(std::cos(*w.angle) * w.axis_x + std::sin(*w.angle) * w.axis_y);
   }
   if (w.lower_bound) out["lower_bound"] = *w.lower_bound;
   return out;
@@ -130,7 +127,7 @@ std::string worst_direction_svg(const analysis::WorstDirection& w) {
   std::string caption = "alpha(theta), seen from above, theta from the first horizontal axis; " +
                         std::to_string(w.evaluations.size()) + " directions evaluated";
   if (w.alpha_min && w.angle) {
-    caption = "weakest at " + number(*w.angle * 180.0 / kPi) + " deg: alpha = " + number(*w.alpha_min, "%.6g") +
+    caption = "weakest at " + number(degrees(*w.angle)) + " deg: alpha = " + number(*w.alpha_min, "%.6g") +
               (w.lower_bound ? " (certified >= " + number(*w.lower_bound, "%.6g") + ")" : " (not certified)") + "; " +
               std::to_string(w.evaluations.size()) + " directions evaluated";
   }

@@ -1,5 +1,6 @@
 #include "io/worst_settlement_json.hpp"
 
+#include "io/json_values.hpp"
 #include "io/number_text.hpp"
 
 #include <algorithm>
@@ -9,16 +10,11 @@ namespace rbla::io {
 namespace {
 
 using nlohmann::json;
-constexpr double kPi = 3.14159265358979323846;
-
-double degrees(double radians) { return radians * 180.0 / kPi; }
-
-json vec(const model::Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 
 json evaluation_json(const analysis::SettlementEvaluation& e, double force_unit) {
   json out{{"tilt_deg", degrees(e.tilt)},
            {"azimuth_deg", degrees(e.azimuth)},
-           {"direction", vec(e.direction)},
+           {"direction", vec3_json(e.direction)},
            {"status", analysis::to_string(e.verdict)},
            {"initial_base_reaction", e.initial_reaction / force_unit},
            {"interior_point_iterations", e.interior_point_iterations},
@@ -42,16 +38,16 @@ json worst_settlement_json(const model::Model& model, const analysis::WorstSettl
            {"tolerance", tolerance},
            {"stop", w.stop},
            {"cone_angle_deg", degrees(w.cone_angle)},
-           {"azimuth_zero", vec(w.axis_x)},
-           {"azimuth_ninety", vec(w.axis_y)},
-           {"initial_reaction_vector", vec(w.initial_reaction_vector / force_unit)},
+           {"azimuth_zero", vec3_json(w.axis_x)},
+           {"azimuth_ninety", vec3_json(w.axis_y)},
+           {"initial_reaction_vector", vec3_json(w.initial_reaction_vector / force_unit)},
            {"num_evaluations", static_cast<int>(w.evaluations.size())},
            {"seconds", w.seconds},
            {"evaluations", evaluations}};
   if (w.worst) {
     const analysis::SettlementEvaluation& e = w.evaluations[static_cast<std::size_t>(*w.worst)];
     out["ratio"] = *e.ratio;
-    out["direction"] = vec(e.direction);
+    out["direction"] = vec3_json(e.direction);
     out["tilt_deg"] = degrees(e.tilt);
     out["azimuth_deg"] = degrees(e.azimuth);
     out["base_reaction"] = *e.base_reaction / force_unit;
