@@ -21,6 +21,12 @@
 namespace rbla::cli {
 namespace {
 
+/// How many symbolic analyses a search needed (its analyses share one solver while their conic
+/// problems keep one shape).
+std::string symbolic_text(int count) {
+  return count == 1 ? " (one symbolic factorisation)" : " (" + std::to_string(count) + " symbolic factorisations)";
+}
+
 struct FrictionSearch {
   analysis::ThresholdSettings threshold;
   std::optional<double> target_alpha;
@@ -67,7 +73,8 @@ int run_worst_direction(const CommonOptions& options, const analysis::RadialSear
   progress(options, "searching the weakest horizontal direction of the seismic load");
   const analysis::WorstDirection w = analysis::find_worst_direction(loaded.model, analysis_options_of(options), settings);
   report_warnings(w.at_minimum.warnings, options);
-  progress(options, std::to_string(w.evaluations.size()) + " directions in " + seconds_text(w.seconds) + "; " + w.stop);
+  progress(options, std::to_string(w.evaluations.size()) + " directions in " + seconds_text(w.seconds) +
+                        symbolic_text(w.symbolic_analyses) + "; " + w.stop);
   (stdout_taken ? std::cerr : std::cout) << shown(w.verdict_text) << "\n";
   ExtraOutput extra{"worst_direction.svg", [&w] { return io::worst_direction_svg(w); }, "worst_direction",
                     io::worst_direction_json(w, settings.tolerance)};
@@ -96,7 +103,8 @@ int run_worst_settlement(const CommonOptions& options, const SettlementSearch& s
   search.search = settings.search;
   const analysis::WorstSettlement w = analysis::find_worst_settlement(loaded.model, analysis_options_of(options), search);
   report_warnings(w.at_worst.warnings, options);
-  progress(options, std::to_string(w.evaluations.size()) + " directions in " + seconds_text(w.seconds) + "; " + w.stop);
+  progress(options, std::to_string(w.evaluations.size()) + " directions in " + seconds_text(w.seconds) +
+                        symbolic_text(w.symbolic_analyses) + "; " + w.stop);
   (stdout_taken ? std::cerr : std::cout) << shown(w.verdict_text) << "\n";
   ExtraOutput extra{"worst_settlement.svg", [&w] { return io::worst_settlement_svg(w); }, "worst_settlement",
                     io::worst_settlement_json(loaded.model, w, settings.search.tolerance)};
@@ -115,7 +123,8 @@ int run_critical_friction(const CommonOptions& options, const FrictionSearch& se
   const analysis::CriticalFriction c = analysis::find_critical_friction(
       loaded.model, search.target_alpha, analysis_options_of(options), search.threshold, chosen);
   report_warnings(c.at_critical.warnings, options);
-  progress(options, std::to_string(c.evaluations.size()) + " factors in " + seconds_text(c.seconds));
+  progress(options, std::to_string(c.evaluations.size()) + " factors in " + seconds_text(c.seconds) +
+                        symbolic_text(c.symbolic_analyses));
   (stdout_taken ? std::cerr : std::cout) << shown(c.verdict_text) << "\n";
   ExtraOutput extra{"critical_friction.svg", [&c] { return io::critical_friction_svg(c); }, "critical_friction",
                     io::critical_friction_json(loaded.model, c, search.threshold.tolerance)};

@@ -61,6 +61,9 @@ int solve_sweep_points(const CommonOptions& options, const SweepOptions& sweep, 
                        const std::vector<analysis::SweepPoint>& points) {
   analysis::AnalysisOptions analysis_options;
   analysis_options.threads = options.threads;
+  // The points differ only in numbers: one symbolic analysis serves them all.
+  analysis::SolverReuse solvers;
+  analysis_options.reuse = &solvers;
   int exit_code = kSuccess;
   for (const auto& point : points) {
     if (sweep.task >= 0 && point.index % sweep.tasks != sweep.task) continue;

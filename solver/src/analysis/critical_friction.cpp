@@ -127,11 +127,14 @@ CriticalFriction find_critical_friction(const model::Model& model, std::optional
   // bracket narrows. On the 1920-block facade (target alpha 0.2) the seven analyses took 152
   // interior-point iterations instead of 170; warm starts from further away cost more than cold.
   WarmStarts points(std::log(2.0));
+  // The models differ only in numbers: one symbolic analysis serves them all (analysis/solver_reuse.hpp).
+  SolverReuse solvers;
   auto evaluate = [&](double factor) {
     const Eigen::VectorXd where = Eigen::VectorXd::Constant(1, std::log(factor));
     conic::Iterate start = points.nearest(where);
     AnalysisOptions warm = options;
     warm.warm_start = &start;
+    warm.reuse = &solvers;
     const auto evaluation_start = Clock::now();
     model::Model at_factor = model;
     for (int k : set) at_factor.interfaces[k].friction *= factor;
@@ -151,6 +154,7 @@ CriticalFriction find_critical_friction(const model::Model& model, std::optional
   const Threshold t = find_threshold(evaluate, settings);
   conclude(c, t, model.analysis.friction_model == model::FrictionModel::Associative);
   c.seconds = seconds_since(start);
+  c.symbolic_analyses = solvers.built();
   return c;
 }
 

@@ -44,6 +44,9 @@ struct CriticalFriction {
   model::Model model_at_critical;  ///< frictions scaled by factor_upper (or the last factor tried)
   AnalysisResult at_critical;      ///< the analysis there
   double seconds = 0.0;
+  /// Conic solvers built, each with one symbolic analysis; the other analyses reused one
+  /// (analysis/solver_reuse.hpp).
+  int symbolic_analyses = 0;
 };
 
 /// Scales the interfaces in `scaled` (indices into model.interfaces), or every interface when it

@@ -540,7 +540,9 @@ void load_vectors(const model::Model& m, const FormulationOptions& options, cons
 }
 
 /// The live load's entries, each row in the column of its block's copy of the multiplier (the
-/// moving supports' row in the multiplier's own).
+/// moving supports' row in the multiplier's own). With FormulationOptions::pattern_for_every_direction
+/// every row of a block the seismic load acts on is kept, zero or not: a component that vanishes
+/// along one direction (the y force at 0 degrees) does not along the next.
 void add_live_column(const model::Model& m, const Formulation& f, const MultiplierCopies& copies,
                      const Eigen::VectorXd& live, std::vector<Eigen::Triplet<double>>& triplets) {
   const auto num_rows = static_cast<int>(live.size());
@@ -549,8 +551,11 @@ void add_live_column(const model::Model& m, const Formulation& f, const Multipli
     if (f.block_row[b] < 0 || m.blocks[b].is_support()) continue;
     for (int k = 0; k < f.rows_per_block; ++k) row_owner[f.block_row[b] + k] = static_cast<int>(b);
   }
+  const bool seismic =
+      f.options.pattern_for_every_direction && !f.settlement && m.analysis.seismic_direction.has_value();
+  auto seismic_row = [&](int row) { return seismic && row_owner[row] >= 0 && m.blocks[row_owner[row]].weight() > 0.0; };
   for (int row = 0; row < num_rows; ++row) {
-    if (live[row] == 0.0) continue;
+    if (live[row] == 0.0 && !seismic_row(row)) continue;
     const int variable = row_owner[row] >= 0 ? copies.variable[row_owner[row]] : f.multiplier_variable;
     triplets.emplace_back(row, variable, live[row]);
   }

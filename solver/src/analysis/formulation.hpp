@@ -67,6 +67,11 @@ struct FormulationOptions {
   FrictionSet friction_set = FrictionSet::Cone;
   bool planar = false;  ///< use `frame` (from detect_planar) and 3 equations per block
   PlanarFrame frame;
+  /// Keep every seismic-load entry of the multiplier's column, zero or not, so that the sparsity
+  /// pattern is the same for every seismic direction: a search over directions then reuses one
+  /// symbolic factorisation (analysis/solver_reuse.hpp). Off for a single analysis, whose
+  /// factorisation the explicit zeros would only perturb.
+  bool pattern_for_every_direction = false;
 };
 
 /// The conic problem plus everything needed to read its solution back as forces and velocities.

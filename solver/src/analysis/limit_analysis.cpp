@@ -340,7 +340,8 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
   const model::AnalysisRequest& request = m.analysis;
   AnalysisResult result = empty_result(request);
 
-  const FormulationOptions formulation_options = choose_formulation(m, result);
+  FormulationOptions formulation_options = choose_formulation(m, result);
+  formulation_options.pattern_for_every_direction = options.reuse != nullptr;
   const Formulation formulation = build_formulation(m, formulation_options);
   result.warnings.insert(result.warnings.end(), formulation.warnings.begin(), formulation.warnings.end());
   record_size(formulation, result);
@@ -359,8 +360,9 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
   const auto solve_start = Clock::now();
   conic::Settings settings = solver_settings(request, options, deadline.left());
   if (options.warm_start) settings.snapshot_gap_rel = kSearchSnapshotGap;
-  conic::ConicSolver solver(formulation.problem, settings);
-  if (options.progress) solver.set_progress_callback(options.progress);
+  SolverReuse own;
+  conic::ConicSolver& solver = (options.reuse ? *options.reuse : own).solver_for(formulation.problem, settings);
+  solver.set_progress_callback(options.progress);
   warm_start_from(options.warm_start, formulation.problem, solver);
   conic::Solution solution = solver.solve();
   if (options.warm_start && !solution.snapshot.empty()) *options.warm_start = solution.snapshot;

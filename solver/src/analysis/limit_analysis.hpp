@@ -3,6 +3,7 @@
 #pragma once
 
 #include "analysis/analysis_result.hpp"
+#include "analysis/solver_reuse.hpp"
 #include "model/model.hpp"
 #include "rbla/conic/solver.hpp"
 
@@ -27,6 +28,9 @@ struct AnalysisOptions {
   /// holds if its dimensions match, and leaves there the point it passed at a relative gap of
   /// 1e-2 (ConicSolver::set_warm_start, Skajaa, Andersen & Ye 2013).
   conic::Iterate* warm_start = nullptr;
+  /// A searching caller's conic solver between analyses: when set, an analysis whose conic
+  /// problem has the kept solver's shape reuses its symbolic analysis (analysis/solver_reuse.hpp).
+  SolverReuse* reuse = nullptr;
 };
 
 /// Runs the analysis the model requests (model.analysis). Throws model::ModelError only for

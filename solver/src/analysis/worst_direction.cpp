@@ -102,6 +102,8 @@ WorstDirection find_worst_direction(const model::Model& model, const AnalysisOpt
   // Each direction starts from the interior point of the nearest one evaluated within 30 degrees
   // (analysis/warm_starts.hpp).
   WarmStarts points(2.0 * std::sin(kPi / 12.0));
+  // The models differ only in numbers: one symbolic analysis serves them all (analysis/solver_reuse.hpp).
+  SolverReuse solvers;
   auto evaluate = [&](double angle) {
     const auto evaluation_start = Clock::now();
     model::Model turned = model;
@@ -112,6 +114,7 @@ WorstDirection find_worst_direction(const model::Model& model, const AnalysisOpt
     conic::Iterate start = points.nearest(where);
     AnalysisOptions warm = options;
     warm.warm_start = &start;
+    warm.reuse = &solvers;
     AnalysisResult result = analyse(turned, warm);
     points.keep(where, std::move(start));
     RadialSample sample = as_sample(result);
@@ -129,6 +132,7 @@ WorstDirection find_worst_direction(const model::Model& model, const AnalysisOpt
   const RadialMinimum search = minimise_radius(evaluate, search_settings);
   conclude(w, search, search_settings);
   w.seconds = seconds_since(start);
+  w.symbolic_analyses = solvers.built();
   return w;
 }
 

@@ -46,6 +46,9 @@ struct WorstDirection {
   model::Model model_at_minimum;     ///< the model with the seismic direction at the minimum
   AnalysisResult at_minimum;         ///< the whole analysis there (or where the search stopped)
   double seconds = 0.0;
+  /// Conic solvers built, each with one symbolic analysis; the other analyses reused one
+  /// (analysis/solver_reuse.hpp).
+  int symbolic_analyses = 0;
 };
 
 /// Searches the seismic direction of a load-multiplier analysis (model.analysis.type); the model's

@@ -154,6 +154,8 @@ WorstSettlement find_worst_settlement(const model::Model& model, const AnalysisO
   // Each direction starts from the interior point of the nearest one evaluated within 15 degrees
   // (analysis/warm_starts.hpp).
   WarmStarts points(2.0 * std::sin(kPi / 24.0));
+  // The models differ only in numbers: one symbolic analysis serves them all (analysis/solver_reuse.hpp).
+  SolverReuse solvers;
   auto evaluate = [&](const Eigen::Vector3d& direction) {
     const auto evaluation_start = Clock::now();
     model::Model turned = model;
@@ -163,6 +165,7 @@ WorstSettlement find_worst_settlement(const model::Model& model, const AnalysisO
     conic::Iterate start = points.nearest(direction);
     AnalysisOptions warm = options;
     warm.warm_start = &start;
+    warm.reuse = &solvers;
     AnalysisResult result = analyse(turned, warm);
     points.keep(direction, std::move(start));
     SettlementEvaluation e;
@@ -186,6 +189,7 @@ WorstSettlement find_worst_settlement(const model::Model& model, const AnalysisO
   const ConeMaximum search = find_cone_maximum(evaluate, cone, search_settings);
   conclude(model, w, search, search_settings);
   w.seconds = seconds_since(start);
+  w.symbolic_analyses = solvers.built();
   return w;
 }
 

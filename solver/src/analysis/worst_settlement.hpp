@@ -59,6 +59,9 @@ struct WorstSettlement {
   model::Model model_at_worst;  ///< the model with the settlement direction there
   AnalysisResult at_worst;      ///< the whole analysis there (or where the search stopped)
   double seconds = 0.0;
+  /// Conic solvers built, each with one symbolic analysis; the other analyses reused one
+  /// (analysis/solver_reuse.hpp).
+  int symbolic_analyses = 0;
 };
 
 /// Searches the settlement direction of a settlement analysis; the model's own direction is

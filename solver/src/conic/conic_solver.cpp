@@ -433,6 +433,19 @@ void ConicSolver::update_A_values(const Eigen::VectorXd& values) {
   impl_->rescale();
 }
 
+void ConicSolver::update(const ConicProblem& problem) {
+  if (!same_shape(impl_->problem, problem))
+    throw ConicSetupError("update: another shape, sparsity pattern or cones than the solver's problem");
+  if (problem.b.size() != problem.A.rows() || problem.c.size() != problem.A.cols())
+    throw ConicSetupError("update: wrong length of b or c");
+  if (!problem.A.coeffs().allFinite() || !problem.b.allFinite() || !problem.c.allFinite())
+    throw ConicSetupError("update: data are not finite");
+  impl_->problem.A = problem.A;
+  impl_->problem.b = problem.b;
+  impl_->problem.c = problem.c;
+  impl_->rescale();
+}
+
 void ConicSolver::set_warm_start(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
                                  const Eigen::VectorXd& z) {
   impl_->warm_x = x;

@@ -1,5 +1,6 @@
 #include "rbla/conic/problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -72,6 +73,16 @@ ConicSetupError ConicSetupError::from_messages(const std::string& prefix,
   text << prefix << ": ";
   for (std::size_t k = 0; k < messages.size(); ++k) text << (k ? "; " : "") << messages[k];
   return ConicSetupError(text.str());
+}
+
+bool same_shape(const ConicProblem& a, const ConicProblem& b) {
+  const auto& A = a.A;
+  const auto& B = b.A;
+  if (A.rows() != B.rows() || A.cols() != B.cols() || A.nonZeros() != B.nonZeros()) return false;
+  if (!A.isCompressed() || !B.isCompressed()) return false;
+  if (a.cones.num_nonneg != b.cones.num_nonneg || a.cones.soc_dims != b.cones.soc_dims) return false;
+  return std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1, B.outerIndexPtr()) &&
+         std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), B.innerIndexPtr());
 }
 
 }  // namespace rbla::conic

@@ -63,6 +63,49 @@ TEST(ConicRepeatedSolves, WrongLengthsAreSetupErrors) {
   EXPECT_THROW(solver.update_A_values(Eigen::VectorXd::Zero(3)), ConicSetupError);
 }
 
+TEST(ConicRepeatedSolves, UpdateTakesAWholeProblemOfTheSameShapeOnly) {
+  RandomProblemOptions o;
+  o.rows = 50;
+  o.num_nonneg = 40;
+  o.num_soc3 = 30;
+  o.seed = 13;
+  const ConicProblem p = random_feasible_problem(o);
+  ConicSolver solver(p);
+  const Solution first = solver.solve();
+  ASSERT_EQ(first.info.status, SolveStatus::Solved);
+
+  ConicProblem q = p;
+  for (Eigen::Index k = 0; k < q.A.nonZeros(); ++k) q.A.valuePtr()[k] *= 1.0 + 0.1 * ((k % 4) - 1.5);
+  Eigen::VectorXd inside = first.x;
+  for (Eigen::Index j = 0; j < q.cones.num_nonneg; ++j) inside[j] += 0.5;
+  for (std::size_t k = 0; k < q.cones.soc_dims.size(); ++k)
+    inside[q.cones.num_nonneg + 3 * static_cast<Eigen::Index>(k)] += 0.5;
+  q.b = q.A * inside;
+  q.c.head(q.cones.num_nonneg).array() += 0.2;
+  ASSERT_TRUE(same_shape(p, q));
+  solver.update(q);
+  const Solution reused = solver.solve();
+  const Solution fresh = solve(q);
+  ASSERT_EQ(reused.info.status, SolveStatus::Solved);
+  EXPECT_NEAR(reused.info.primal_objective, fresh.info.primal_objective,
+              1e-9 * std::max(1.0, std::abs(fresh.info.primal_objective)));
+  EXPECT_EQ(reused.info.iterations, fresh.info.iterations);
+  EXPECT_EQ(solver.num_symbolic_analyses(), 1);
+
+  // One entry fewer: another pattern, refused, and the solver keeps its problem.
+  ConicProblem sparser = q;
+  sparser.A.coeffRef(sparser.A.innerIndexPtr()[0], 0) = 0.0;
+  sparser.A.prune(0.0);
+  EXPECT_FALSE(same_shape(q, sparser));
+  EXPECT_THROW(solver.update(sparser), ConicSetupError);
+  ConicProblem other_cones = q;
+  other_cones.cones.num_nonneg -= 3;
+  other_cones.cones.soc_dims.push_back(3);
+  EXPECT_FALSE(same_shape(q, other_cones));
+  EXPECT_THROW(solver.update(other_cones), ConicSetupError);
+  EXPECT_EQ(solver.solve().info.iterations, reused.info.iterations);
+}
+
 TEST(ConicRepeatedSolves, SettingsCanChangeBetweenSolves) {
   ConicSolver solver(random_feasible_problem({}));
   solver.settings().max_iter = 0;  // the starting point alone

@@ -37,6 +37,10 @@ struct ConicProblem {
   std::vector<std::string> validate() const;
 };
 
+/// Whether `a` and `b` have the same dimensions, cones and sparsity pattern of A (both
+/// compressed): one solver's symbolic analysis serves both (ConicSolver::update).
+bool same_shape(const ConicProblem& a, const ConicProblem& b);
+
 /// Bad problem data or settings, detected at setup. Solve outcomes are never exceptions:
 /// they are a SolveStatus in Info.
 class ConicSetupError : public std::runtime_error {

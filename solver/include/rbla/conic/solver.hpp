@@ -40,6 +40,9 @@ class ConicSolver {
   void update_c(const Eigen::VectorXd& c);
   /// values in the order of problem().A.valuePtr() (compressed column order), length nnz(A).
   void update_A_values(const Eigen::VectorXd& values);
+  /// All of A's values, b and c at once (one re-equilibration instead of three): `problem` must
+  /// have this solver's dimensions, cones and sparsity pattern of A (throws ConicSetupError).
+  void update(const ConicProblem& problem);
 
   /// Starts the next solve() near a known solution of a nearby problem (same dimensions), e.g.
   /// the previous step of a sequence of update_b() solves: Skajaa, Andersen & Ye (2013),
