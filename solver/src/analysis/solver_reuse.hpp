@@ -2,9 +2,8 @@
 // friction, most harmful settlement, a grid of friction coefficients): the models differ only in
 // numbers (a load direction, a friction factor, a unit weight), so their conic problems usually
 // share one sparsity pattern, and the solver's symbolic analysis (the fill-reducing ordering of
-// A W² Aᵀ and its pattern) is done once. Only the data are replaced
-// (ConicSolver::update), which re-equilibrates: a reused solve
-// runs the same iterations as a new solver on the same problem.
+// A W² Aᵀ and its pattern) is done once. Only the data are replaced (ConicSolver::update), which
+// re-equilibrates: a reused solve runs the same iterations as a new solver on the same problem.
 //
 // When the pattern differs (a search over seismic directions on a planar wall alternates the
 // planar LP with 3-D cones, for directions out of the plane), a new solver is built. The two most
