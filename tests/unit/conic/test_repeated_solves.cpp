@@ -11,6 +11,25 @@
 using namespace rbla::conic;
 using namespace rbla::conic::testing;
 
+namespace {
+
+/// A problem related to `p` (same shape): A's values scaled entry-wise by 1 + spread * ((k % 3) - 1),
+/// kept feasible and bounded: b = A x1 for x1, the solution `x` of p moved into the interior of K,
+/// and c shifted by `c_shift` along the interior of K* on the orthant.
+ConicProblem related_problem(const ConicProblem& p, const Eigen::VectorXd& x, double spread, double c_shift) {
+  ConicProblem q = p;
+  for (Eigen::Index k = 0; k < q.A.nonZeros(); ++k) q.A.valuePtr()[k] *= 1.0 + spread * ((k % 3) - 1.0);
+  Eigen::VectorXd x1 = x;
+  for (Eigen::Index j = 0; j < q.cones.num_nonneg; ++j) x1[j] += 0.5;
+  for (std::size_t k = 0; k < q.cones.soc_dims.size(); ++k)
+    x1[q.cones.num_nonneg + 3 * static_cast<Eigen::Index>(k)] += 0.5;
+  q.b = q.A * x1;
+  q.c.head(q.cones.num_nonneg).array() += c_shift;
+  return q;
+}
+
+}  // namespace
+
 TEST(ConicRepeatedSolves, UpdatesMatchFreshSolvesAndKeepTheSymbolicFactor) {
   RandomProblemOptions o;
   o.rows = 80;
@@ -24,21 +43,9 @@ TEST(ConicRepeatedSolves, UpdatesMatchFreshSolvesAndKeepTheSymbolicFactor) {
   const Solution first = solver.solve();
   ASSERT_EQ(first.info.status, SolveStatus::Solved);
 
-  // A sequence of related problems: values of A scaled column-wise, b and c moved.
+  // A sequence of related problems: values of A scaled entry-wise, b and c moved.
   for (int step = 1; step <= 5; ++step) {
-    ConicProblem q = p;
-    for (Eigen::Index k = 0; k < q.A.nonZeros(); ++k) {
-      q.A.valuePtr()[k] *= 1.0 + 0.05 * step * ((k % 3) - 1.0);
-    }
-    // Keep it feasible and bounded: b = A x1 for a point x1 ∈ int K (the first solution moved
-    // into the interior), c unchanged plus a shift along the interior of K*.
-    Eigen::VectorXd x1 = first.x;
-    for (Eigen::Index j = 0; j < q.cones.num_nonneg; ++j) x1[j] += 0.5;
-    for (std::size_t k = 0; k < q.cones.soc_dims.size(); ++k)
-      x1[q.cones.num_nonneg + 3 * static_cast<Eigen::Index>(k)] += 0.5;
-    q.b = q.A * x1;
-    for (Eigen::Index j = 0; j < q.cones.num_nonneg; ++j) q.c[j] += 0.1 * step;
-
+    const ConicProblem q = related_problem(p, first.x, 0.05 * step, 0.1 * step);
     solver.update_A_values(Eigen::Map<const Eigen::VectorXd>(q.A.valuePtr(), q.A.nonZeros()));
     solver.update_b(q.b);
     solver.update_c(q.c);
@@ -74,14 +81,7 @@ TEST(ConicRepeatedSolves, UpdateTakesAWholeProblemOfTheSameShapeOnly) {
   const Solution first = solver.solve();
   ASSERT_EQ(first.info.status, SolveStatus::Solved);
 
-  ConicProblem q = p;
-  for (Eigen::Index k = 0; k < q.A.nonZeros(); ++k) q.A.valuePtr()[k] *= 1.0 + 0.1 * ((k % 4) - 1.5);
-  Eigen::VectorXd inside = first.x;
-  for (Eigen::Index j = 0; j < q.cones.num_nonneg; ++j) inside[j] += 0.5;
-  for (std::size_t k = 0; k < q.cones.soc_dims.size(); ++k)
-    inside[q.cones.num_nonneg + 3 * static_cast<Eigen::Index>(k)] += 0.5;
-  q.b = q.A * inside;
-  q.c.head(q.cones.num_nonneg).array() += 0.2;
+  const ConicProblem q = related_problem(p, first.x, 0.1, 0.2);
   ASSERT_TRUE(same_shape(p, q));
   solver.update(q);
   const Solution reused = solver.solve();
