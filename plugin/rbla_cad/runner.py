@@ -224,14 +224,25 @@ class Runner(object):
         return self._analysis("worst-direction", extra, model, **_analysis_kwargs(kwargs))
 
     def worst_settlement(self, model, cone_angle=None, tolerance=None, max_directions=None,
-                         **kwargs):
+                         candidate_groups=None, **kwargs):
         """``rbla worst-settlement``: the settlement direction of the moving supports, within
         ``cone_angle`` degrees of gravity (default 30), that leaves the largest fraction R/R0
         of the initial reaction at collapse. The outcome's result is the settlement analysis
         along it; ``result.data["worst_settlement"]`` holds the search (ratio, tilt, azimuth,
-        certified upper bound, every direction tried). Other keyword arguments as for
-        solve()."""
+        certified upper bound, every direction tried). ``candidate_groups``: groups of supports
+        (each a list of block ids or labels, or one comma-separated string) of which only one
+        settles at a time; each is searched and they are ranked, the most harmful group's
+        analysis returned, the ranking in ``worst_settlement["candidate_groups"]``. Other
+        keyword arguments as for solve()."""
         extra = []
+        for group in candidate_groups or []:
+            names = group.split(",") if isinstance(group, str) else list(group)
+            names = [n.strip() for n in names if n.strip()]
+            if not names:
+                raise ValueError("--candidate-group: a group names no block")
+            if any("," in n for n in names):
+                raise ValueError("--candidate-group: a name with a comma cannot be passed to rbla")
+            extra += ["--candidate-group", ",".join(names)]
         if cone_angle is not None:
             extra += ["--cone-angle", repr(float(cone_angle))]
         if tolerance is not None:

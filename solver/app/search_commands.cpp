@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include "analysis/critical_friction.hpp"
+#include "analysis/support_groups.hpp"
 #include "analysis/worst_direction.hpp"
 #include "analysis/worst_settlement.hpp"
 #include "io/critical_friction_json.hpp"
@@ -88,7 +89,45 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;
 struct SettlementSearch {
   double cone_angle_deg = analysis::WorstSettlementSettings{}.cone_angle / kDegree;
   analysis::ConeSearchSettings search;
+  std::vector<std::string> candidate_groups;  ///< --candidate-group: block ids or labels, comma-separated
 };
+
+/// The blocks of each --candidate-group; a name that picks no block is an error naming the option.
+std::vector<std::vector<int>> candidate_groups(const model::Model& model, const std::vector<std::string>& lists) {
+  std::vector<std::vector<int>> groups;
+  std::vector<model::InputIssue> issues;
+  for (const std::string& list : lists) {
+    std::vector<std::string> names, unmatched;
+    std::size_t begin = 0;
+    while (begin <= list.size()) {
+      const std::size_t end = std::min(list.find(',', begin), list.size());
+      if (end > begin) names.push_back(list.substr(begin, end - begin));
+      begin = end + 1;
+    }
+    groups.push_back(model.blocks_named(names, unmatched));
+    for (const std::string& name : unmatched) issues.push_back({"--candidate-group", "no block has the id or label '" + name + "'"});
+  }
+  if (!issues.empty()) throw model::ModelError(issues);
+  return groups;
+}
+
+/// `rbla worst-settlement --candidate-group ...`: each group's search, the most harmful group's
+/// analysis written with the ranking in worst_settlement.candidate_groups.
+int run_support_groups(const CommonOptions& options, const SettlementSearch& settings, const io::LoadedModel& loaded,
+                       const analysis::WorstSettlementSettings& search, Clock::time_point start, bool stdout_taken) {
+  const analysis::SupportGroupRanking r = analysis::rank_support_groups(
+      loaded.model, candidate_groups(loaded.model, settings.candidate_groups), "--candidate-group",
+      analysis_options_of(options), search);
+  const analysis::WorstSettlement& w = r.groups[static_cast<std::size_t>(r.most_harmful.value_or(0))].search;
+  report_warnings(w.at_worst.warnings, options);
+  progress(options, std::to_string(r.groups.size()) + " candidate groups in " + seconds_text(r.seconds));
+  (stdout_taken ? std::cerr : std::cout) << shown(r.verdict_text) << "\n" << shown(w.verdict_text) << "\n";
+  nlohmann::json section = io::worst_settlement_json(loaded.model, w, settings.search.tolerance);
+  section["candidate_groups"] = io::candidate_groups_json(loaded.model, r);
+  ExtraOutput extra{"worst_settlement.svg", [&w] { return io::worst_settlement_svg(w); }, "worst_settlement", section};
+  const int code = write_analysis_outputs(options, w.model_at_worst, w.at_worst, loaded.timings, start, extra);
+  return code != kSuccess ? code : exit_code_of(w.verdict);
+}
 
 int run_worst_settlement(const CommonOptions& options, const SettlementSearch& settings) {
   const auto start = Clock::now();
@@ -101,6 +140,7 @@ int run_worst_settlement(const CommonOptions& options, const SettlementSearch& s
   analysis::WorstSettlementSettings search;
   search.cone_angle = settings.cone_angle_deg * kDegree;
   search.search = settings.search;
+  if (!settings.candidate_groups.empty()) return run_support_groups(options, settings, loaded, search, start, stdout_taken);
   const analysis::WorstSettlement w = analysis::find_worst_settlement(loaded.model, analysis_options_of(options), search);
   report_warnings(w.at_worst.warnings, options);
   progress(options, std::to_string(w.evaluations.size()) + " directions in " + seconds_text(w.seconds) +
@@ -181,6 +221,12 @@ Command add_worst_settlement(CLI::App& app, CommonOptions& options) {
   worst->add_option("--max-directions", settings->search.max_samples, "Directions evaluated in all, at most")
       ->default_val(settings->search.max_samples)
       ->check(CLI::Range(7, 1000));
+  worst->add_option("--candidate-group", settings->candidate_groups,
+                    "A group of supports that may settle together (block ids or labels, comma-separated); "
+                    "repeat for each candidate: each group's most harmful direction is searched with only it "
+                    "settling, and the groups are ranked")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   worst->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
   worst->add_flag("-v,--verbose", options.verbose, "Interior-point iteration logs and every warning");
   worst->add_option("--threads", options.threads, "Threads per conic solve, 1 or 2")->check(CLI::Range(1, 2));

@@ -157,6 +157,9 @@ class AdapterTest(unittest.TestCase):
         text, res, log = self.gh.worst_settlement(json.dumps(settling), exe=EXE, cone_angle=15)
         self.assertTrue(res.data["worst_settlement"]["certified"])
         self.assertLessEqual(res.data["worst_settlement"]["tilt_deg"], 15.0 + 1e-9)
+        text, res, log = self.gh.worst_settlement(json.dumps(settling), exe=EXE, cone_angle=15,
+                                                  candidate_groups=["base_moving", "base_fixed", " "])
+        self.assertEqual(len(res.data["worst_settlement"]["candidate_groups"]["groups"]), 2)
         # Errors reach the component as runtime messages (a stand-in Grasshopper module here).
         import types
         levels = types.SimpleNamespace(Warning="warning", Error="error")

@@ -193,6 +193,17 @@ class SolverRunTest(unittest.TestCase):
         self.assertGreaterEqual(search["upper_bound"], search["ratio"])
         self.assertEqual(jsonschema_lite.validate_result(out.result.data), [])
 
+    def test_worst_settlement_ranks_candidate_groups(self):
+        out = self.runner.worst_settlement(_support.sample("wall_settlement.json"), cone_angle=20,
+                                           candidate_groups=[["base_moving"], "base_fixed"],
+                                           verbose=False)
+        groups = out.result.data["worst_settlement"]["candidate_groups"]
+        self.assertEqual([g["supports"] for g in groups["groups"]], [["base_moving"], ["base_fixed"]])
+        self.assertEqual(sum(g["most_harmful"] for g in groups["groups"]), 1)
+        self.assertEqual(jsonschema_lite.validate_result(out.result.data), [])
+        with self.assertRaises(ValueError):
+            self.runner.worst_settlement(_support.sample("wall_settlement.json"), candidate_groups=[[]])
+
     def test_arch_sample(self):
         d = tempfile.mkdtemp()
         try:

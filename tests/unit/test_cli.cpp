@@ -240,6 +240,57 @@ TEST_F(Cli, WorstSettlementWritesAValidResultAtTheMostHarmfulDirection) {
   EXPECT_TRUE(fs::exists(path("pictures/worst_settlement.svg")));
 }
 
+TEST_F(Cli, WorstSettlementRanksCandidateGroupsOfSupports) {
+  const std::string sample = std::string(RBLA_SOURCE_DIR) + "/samples/wall_settlement.json";
+  const auto r = run("worst-settlement -q " + sample + " --candidate-group base_moving --candidate-group base_fixed -o " +
+                     path("g.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Most harmful of 2 candidate groups"), std::string::npos) << r.output;
+  std::ifstream in(path("g.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
+  const auto result = nlohmann::json::parse(text.str());
+  const auto& w = result.at("worst_settlement");
+  const auto& groups = w.at("candidate_groups").at("groups");
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[0].at("supports"), nlohmann::json::array({"base_moving"}));
+  int top = -1;
+  for (int g = 0; g < 2; ++g) {
+    if (groups[g].at("most_harmful").get<bool>()) top = g;
+  }
+  ASSERT_GE(top, 0);
+  // The rest of the file is the most harmful group's search and analysis.
+  EXPECT_DOUBLE_EQ(w.at("ratio").get<double>(), groups[top].at("ratio").get<double>());
+  EXPECT_DOUBLE_EQ(result.at("base_reaction").at("at_collapse").get<double>(), groups[top].at("base_reaction").get<double>());
+  if (w.at("candidate_groups").at("certain").get<bool>()) {
+    EXPECT_LT(groups[1 - top].at("upper_bound").get<double>(), groups[top].at("ratio").get<double>());
+  }
+}
+
+TEST_F(Cli, WorstSettlementNamesACandidateGroupItCannotUse) {
+  const std::string sample = std::string(RBLA_SOURCE_DIR) + "/samples/wall_settlement.json";
+  write("g.json", "not ours");
+  const auto unknown = run("worst-settlement " + sample + " --candidate-group base_moving,no_such_pier -o " + path("g.json"));
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("--candidate-group"), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("'no_such_pier'"), std::string::npos) << unknown.output;
+  std::ifstream model_file(sample);
+  std::string free_block;
+  const nlohmann::json model = nlohmann::json::parse(model_file);
+  for (const auto& block : model.at("blocks")) {
+    if (block.value("role", "free") == "free") free_block = block.at("id").get<std::string>();
+  }
+  ASSERT_FALSE(free_block.empty());
+  const auto not_support = run("worst-settlement " + sample + " --candidate-group " + free_block + " -o " + path("g.json"));
+  EXPECT_EQ(not_support.exit_code, 2) << not_support.output;
+  EXPECT_NE(not_support.output.find("is not a support"), std::string::npos) << not_support.output;
+  std::ifstream in(path("g.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), "not ours");
+}
+
 TEST_F(Cli, WorstSettlementRefusesALoadMultiplierModelNamingTheField) {
   const auto r = run("worst-settlement " + write("m.json", box_model()) + " -o " + path("w.json"));
   EXPECT_EQ(r.exit_code, 2) << r.output;

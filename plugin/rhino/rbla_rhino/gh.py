@@ -123,11 +123,16 @@ def worst_direction(model_text, run=True, exe=None, timeout=None, tolerance=None
     return _run("worst_direction", model_text, run, exe, timeout, {"tolerance": tolerance or None})
 
 
-def worst_settlement(model_text, run=True, exe=None, timeout=None, tolerance=None, cone_angle=None):
+def worst_settlement(model_text, run=True, exe=None, timeout=None, tolerance=None, cone_angle=None,
+                     candidate_groups=None):
     """As solve(), with ``rbla worst-settlement``: the result is the settlement analysis along
-    the most harmful direction; result.data["worst_settlement"] holds the search."""
+    the most harmful direction; result.data["worst_settlement"] holds the search.
+    ``candidate_groups``: comma-separated support ids or labels, one text per group: the groups
+    are ranked and the most harmful one's analysis returned."""
+    groups = [g for g in (candidate_groups or []) if g and g.strip()]
     return _run("worst_settlement", model_text, run, exe, timeout,
-                {"tolerance": tolerance or None, "cone_angle": cone_angle or None})
+                {"tolerance": tolerance or None, "cone_angle": cone_angle or None,
+                 "candidate_groups": groups or None})
 
 
 def critical_friction(model_text, run=True, exe=None, timeout=None, target_alpha=None,

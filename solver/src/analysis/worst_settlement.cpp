@@ -42,6 +42,10 @@ Vec3 initial_reaction_vector(const model::Model& m) {
 /// Refuses a cone over part of which the supports carry nothing before settlement (R0 <= 0).
 void check_cone(const DirectionCone& cone) {
   if (smallest_on_cone(cone) > 0.0) return;
+  if (cone.w.norm() == 0.0) {
+    throw model::ModelError("/blocks", "the moving supports carry nothing before settlement (R0 = 0 along every "
+                                       "direction), so no fraction R / R0 is defined");
+  }
   const Vec3 a = cone.axis.normalized();
   const double off_axis = std::acos(std::clamp(cone.w.normalized().dot(a), -1.0, 1.0));
   const double widest = 90.0 - degrees(off_axis);

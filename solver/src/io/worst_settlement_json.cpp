@@ -57,6 +57,33 @@ json worst_settlement_json(const model::Model& model, const analysis::WorstSettl
   return out;
 }
 
+json candidate_groups_json(const model::Model& model, const analysis::SupportGroupRanking& r) {
+  const double force_unit = model.units.force_to_kN;
+  json groups = json::array();
+  for (std::size_t g = 0; g < r.groups.size(); ++g) {
+    const analysis::WorstSettlement& w = r.groups[g].search;
+    json ids = json::array();
+    for (int b : r.groups[g].blocks) ids.push_back(model.blocks[b].id);
+    json group{{"supports", ids},
+               {"status", analysis::to_string(w.verdict)},
+               {"most_harmful", r.most_harmful && *r.most_harmful == static_cast<int>(g)},
+               {"certified", w.certified},
+               {"num_evaluations", static_cast<int>(w.evaluations.size())},
+               {"seconds", w.seconds}};
+    if (w.worst) {
+      const analysis::SettlementEvaluation& e = w.evaluations[static_cast<std::size_t>(*w.worst)];
+      group["ratio"] = *e.ratio;
+      group["tilt_deg"] = degrees(e.tilt);
+      group["azimuth_deg"] = degrees(e.azimuth);
+      group["base_reaction"] = *e.base_reaction / force_unit;
+      group["initial_base_reaction"] = e.initial_reaction / force_unit;
+    }
+    if (w.upper_bound) group["upper_bound"] = *w.upper_bound;
+    groups.push_back(group);
+  }
+  return json{{"certain", r.certain}, {"verdict", r.verdict_text}, {"seconds", r.seconds}, {"groups", groups}};
+}
+
 namespace {
 
 /// Blue (0) to red (1).

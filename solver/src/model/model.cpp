@@ -91,37 +91,53 @@ std::pair<Vec3, Vec3> Model::horizontal_axes() const {
   return {x, up.cross(x)};
 }
 
-std::vector<int> Model::interfaces_named(const std::vector<std::string>& interface_names,
-                                         const std::vector<std::string>& block_names,
-                                         std::vector<std::string>& unmatched) const {
-  auto named = [](const std::string& id, const std::string& label, const std::string& name) {
-    return id == name || (!label.empty() && label == name);
-  };
-  std::vector<bool> picked(interfaces.size(), false);
-  for (const std::string& name : interface_names) {
-    bool found = false;
-    for (std::size_t k = 0; k < interfaces.size(); ++k) {
-      if (!named(interfaces[k].id, interfaces[k].label, name)) continue;
-      picked[k] = found = true;
-    }
-    if (!found) unmatched.push_back(name);
-  }
-  for (const std::string& name : block_names) {
-    bool found = false;
-    for (std::size_t b = 0; b < blocks.size(); ++b) {
-      if (!named(blocks[b].id, blocks[b].label, name)) continue;
-      found = true;
-      for (std::size_t k = 0; k < interfaces.size(); ++k) {
-        if (interfaces[k].block_a == static_cast<int>(b) || interfaces[k].block_b == static_cast<int>(b)) picked[k] = true;
-      }
-    }
-    if (!found) unmatched.push_back(name);
-  }
+namespace {
+
+bool named(const std::string& id, const std::string& label, const std::string& name) {
+  return id == name || (!label.empty() && label == name);
+}
+
+std::vector<int> picked_indices(const std::vector<bool>& picked) {
   std::vector<int> indices;
   for (std::size_t k = 0; k < picked.size(); ++k) {
     if (picked[k]) indices.push_back(static_cast<int>(k));
   }
   return indices;
+}
+
+/// Marks in `picked` the items (blocks or interfaces) whose id or label is one of `names`.
+template <typename Items>
+void pick_named(const Items& items, const std::vector<std::string>& names, std::vector<bool>& picked,
+                std::vector<std::string>& unmatched) {
+  for (const std::string& name : names) {
+    bool found = false;
+    for (std::size_t k = 0; k < items.size(); ++k) {
+      if (!named(items[k].id, items[k].label, name)) continue;
+      picked[k] = found = true;
+    }
+    if (!found) unmatched.push_back(name);
+  }
+}
+
+}  // namespace
+
+std::vector<int> Model::blocks_named(const std::vector<std::string>& names, std::vector<std::string>& unmatched) const {
+  std::vector<bool> picked(blocks.size(), false);
+  pick_named(blocks, names, picked, unmatched);
+  return picked_indices(picked);
+}
+
+std::vector<int> Model::interfaces_named(const std::vector<std::string>& interface_names,
+                                         const std::vector<std::string>& block_names,
+                                         std::vector<std::string>& unmatched) const {
+  std::vector<bool> picked(interfaces.size(), false);
+  pick_named(interfaces, interface_names, picked, unmatched);
+  for (int b : blocks_named(block_names, unmatched)) {
+    for (std::size_t k = 0; k < interfaces.size(); ++k) {
+      if (interfaces[k].block_a == b || interfaces[k].block_b == b) picked[k] = true;
+    }
+  }
+  return picked_indices(picked);
 }
 
 }  // namespace rbla::model

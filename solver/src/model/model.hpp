@@ -236,6 +236,9 @@ struct Model {
   /// is along x) projected on the plane normal to gravity, and up cross that, so that angles
   /// turn counter-clockwise seen from above. With gravity along -z: +x and +y.
   std::pair<Vec3, Vec3> horizontal_axes() const;
+  /// The blocks (ascending indices) whose id or label is one of `names`. Names that pick nothing
+  /// are appended to `unmatched`.
+  std::vector<int> blocks_named(const std::vector<std::string>& names, std::vector<std::string>& unmatched) const;
   /// The interfaces (ascending indices) whose id or label is one of `interface_names`, or that
   /// touch a block whose id or label is one of `block_names`. Names that pick nothing are
   /// appended to `unmatched`.

@@ -20,11 +20,13 @@ tilt = None
 azimuth = None
 direction = None
 upper_bound = None
+ranking = []
 log = []
 if model:
     try:
         result, res, log = gh.worst_settlement(model, run=bool(run), exe=exe, timeout=timeout,
-                                               tolerance=tolerance, cone_angle=cone_angle)
+                                               tolerance=tolerance, cone_angle=cone_angle,
+                                               candidate_groups=candidate_groups)
         if res is not None:
             search = res.data.get("worst_settlement", {})
             verdict = search.get("verdict")
@@ -33,6 +35,14 @@ if model:
             azimuth = search.get("azimuth_deg")
             direction = search.get("direction")
             upper_bound = search.get("upper_bound")
+            groups = search.get("candidate_groups")
+            if groups:
+                for g in groups["groups"]:
+                    ranking.append("%s: R/R0 %s%s" % (
+                        ", ".join(g["supports"]),
+                        "%.4g" % g["ratio"] if "ratio" in g else g["status"],
+                        " (most harmful)" if g["most_harmful"] else ""))
+                ranking.append(groups["verdict"])
             ghenv.Component.Message = ("R/R0 %.4g at %.1f deg" % (ratio, tilt) if ratio is not None
                                        else res.status)
     except runner.RblaError as e:
