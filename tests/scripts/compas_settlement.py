@@ -11,7 +11,9 @@ come from rbla's own output:
     spreads is the classical worst case for an arch);
   - a sampling of the cone with `rbla solve` (every 10 degrees of tilt, 15 of azimuth: 73
     directions, few enough for the sanitizer run) finds no ratio above the search's certified
-    upper bound, nor more than the tolerance above its best.
+    upper bound, nor more than the tolerance above its best;
+  - ranked as candidate groups (`--candidate-group`), the two springings are mirror images, so
+    their largest R/R0 agree to the tolerance and the ranking must not claim to be certain.
 
 Usage: compas_settlement.py SOURCE_DIR RBLA_BINARY
 """
@@ -73,6 +75,33 @@ def dense_maximum(rbla, model, w, tmp):
     return best
 
 
+def mirrored_springings(rbla, model, tmp):
+    """Both springing blocks as candidate groups: equal harm, a ranking that says it is unsure."""
+    springings = [b["id"] for b in model["blocks"] if b.get("role") in ("fixed", "moving_support")]
+    model["analysis"].pop("settlement", None)
+    path, out = os.path.join(tmp, "groups.json"), os.path.join(tmp, "groups_r.json")
+    with open(path, "w") as f:
+        json.dump(model, f)
+    run([rbla, "worst-settlement", "-q", path, "--candidate-group", springings[0],
+         "--candidate-group", springings[1], "-o", out])
+    with open(out) as f:
+        w = json.load(f)["worst_settlement"]
+    ranking = w["candidate_groups"]
+    ratios = [g.get("ratio") for g in ranking["groups"]]
+    print("springings as candidate groups: R/R0 %s, certain %s" % (ratios, ranking["certain"]))
+    problems = []
+    if None in ratios:
+        return ["a springing's search did not collapse: " + ranking["verdict"]]
+    if abs(ratios[0] - ratios[1]) > TOLERANCE * max(ratios):
+        problems.append("the mirrored springings' R/R0 differ: %s" % ratios)
+    if ranking["certain"]:
+        problems.append("the ranking of mirror images claims to be certain: " + ranking["verdict"])
+    top = [g for g in ranking["groups"] if g["most_harmful"]]
+    if len(top) != 1 or top[0]["ratio"] != w["ratio"]:
+        problems.append("the file is not the most harmful group's search")
+    return problems
+
+
 def main():
     source, rbla = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
     problems = []
@@ -102,6 +131,7 @@ def main():
             problems.append("upper bound %.9g below the dense sampling's %.9g" % (w["upper_bound"], dense))
         if w["ratio"] < dense * (1 - TOLERANCE):
             problems.append("best %.9g below the dense sampling's %.9g by more than the tolerance" % (w["ratio"], dense))
+        problems += mirrored_springings(rbla, model, tmp)
     for p in problems:
         print("FAIL " + p)
     return 1 if problems else 0
