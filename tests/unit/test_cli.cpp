@@ -39,6 +39,12 @@ class Cli : public ::testing::Test {
     return path.string();
   }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string read(const std::string& name) const {
+    std::ifstream in(dir_ / name);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
 
   static std::string box_model(const std::string& extra = "") {
     return R"({"schema_version": "1.0.0", "units": {"length": "m"}, )" + extra + R"("blocks": [
@@ -65,10 +71,8 @@ TEST_F(Cli, InfoWritesAModelOnlyResult) {
   const auto r = run("info " + write("m.json", box_model()) + " -o " + path("info.json"));
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("contact points:  4"), std::string::npos) << r.output;
-  std::ifstream in(path("info.json"));
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_NE(text.str().find("\"status\": \"model_only\""), std::string::npos) << text.str();
+  const std::string text = read("info.json");
+  EXPECT_NE(text.find("\"status\": \"model_only\""), std::string::npos) << text;
 }
 
 TEST_F(Cli, InfoSaysWhichTolerancesDetectionUsedAndWhatItMissed) {
@@ -158,11 +162,9 @@ TEST_F(Cli, CannotStandIsAnAnswerNotAnError) {
 TEST_F(Cli, DumpProblemWritesAnMpsForThePlanarLp) {
   const auto r = run("solve -q " + write("m.json", box_model()) + " --dump-problem " + path("p.mps"));
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream in(path("p.mps"));
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_NE(text.str().find("ROWS"), std::string::npos);
-  EXPECT_NE(text.str().find("ENDATA"), std::string::npos);
+  const std::string text = read("p.mps");
+  EXPECT_NE(text.find("ROWS"), std::string::npos);
+  EXPECT_NE(text.find("ENDATA"), std::string::npos);
 }
 
 TEST_F(Cli, UnwritableProblemDumpIsAFileErrorNamingThePath) {
@@ -193,11 +195,9 @@ TEST_F(Cli, WorstDirectionWritesAValidResultWithTheSearchAndItsPictures) {
                      path("pictures"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("Weakest horizontal direction at"), std::string::npos) << r.output;
-  std::ifstream in(path("w.json"));
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
-  const auto result = nlohmann::json::parse(text.str());
+  const std::string text = read("w.json");
+  EXPECT_TRUE(rbla::io::validate_result_text(text).empty()) << text.substr(0, 2000);
+  const auto result = nlohmann::json::parse(text);
   const auto& w = result.at("worst_direction");
   EXPECT_NEAR(w.at("load_multiplier").get<double>(), 0.5, 0.5e-6);
   EXPECT_TRUE(w.at("certified").get<bool>());
@@ -224,11 +224,9 @@ TEST_F(Cli, WorstSettlementWritesAValidResultAtTheMostHarmfulDirection) {
                      path("pictures"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("Most harmful settlement direction"), std::string::npos) << r.output;
-  std::ifstream in(path("w.json"));
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
-  const auto result = nlohmann::json::parse(text.str());
+  const std::string text = read("w.json");
+  EXPECT_TRUE(rbla::io::validate_result_text(text).empty()) << text.substr(0, 2000);
+  const auto result = nlohmann::json::parse(text);
   const auto& w = result.at("worst_settlement");
   EXPECT_TRUE(w.at("certified").get<bool>());
   EXPECT_DOUBLE_EQ(w.at("cone_angle_deg").get<double>(), 20.0);
@@ -246,11 +244,9 @@ TEST_F(Cli, WorstSettlementRanksCandidateGroupsOfSupports) {
                      path("g.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("Most harmful of 2 candidate groups"), std::string::npos) << r.output;
-  std::ifstream in(path("g.json"));
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
-  const auto result = nlohmann::json::parse(text.str());
+  const std::string text = read("g.json");
+  EXPECT_TRUE(rbla::io::validate_result_text(text).empty()) << text.substr(0, 2000);
+  const auto result = nlohmann::json::parse(text);
   const auto& w = result.at("worst_settlement");
   const auto& groups = w.at("candidate_groups").at("groups");
   ASSERT_EQ(groups.size(), 2u);
@@ -285,10 +281,8 @@ TEST_F(Cli, WorstSettlementNamesACandidateGroupItCannotUse) {
   const auto not_support = run("worst-settlement " + sample + " --candidate-group " + free_block + " -o " + path("g.json"));
   EXPECT_EQ(not_support.exit_code, 2) << not_support.output;
   EXPECT_NE(not_support.output.find("is not a support"), std::string::npos) << not_support.output;
-  std::ifstream in(path("g.json"));
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_EQ(text.str(), "not ours");
+  const std::string text = read("g.json");
+  EXPECT_EQ(text, "not ours");
 }
 
 TEST_F(Cli, WorstSettlementRefusesALoadMultiplierModelNamingTheField) {
@@ -302,11 +296,9 @@ TEST_F(Cli, CriticalFrictionScalesTheInterfacesOfChosenBlocks) {
   const auto r = run("critical-friction -q " + write("m.json", box_model()) + " --interfaces-of B1 --target-alpha 0.3" +
                      " --tolerance 1e-6 -o " + path("c.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream in(path("c.json"));
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
-  const auto c = nlohmann::json::parse(text.str()).at("critical_friction");
+  const std::string text = read("c.json");
+  EXPECT_TRUE(rbla::io::validate_result_text(text).empty()) << text.substr(0, 2000);
+  const auto c = nlohmann::json::parse(text).at("critical_friction");
   ASSERT_EQ(c.at("scaled_interfaces").size(), 1u);
   EXPECT_NEAR(c.at("friction").get<double>(), 0.3, 1e-6);
 }
@@ -318,10 +310,8 @@ TEST_F(Cli, CriticalFrictionNamesAnInterfaceItCannotFind) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--interfaces"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("'no_such_joint'"), std::string::npos) << r.output;
-  std::ifstream in(path("c.json"));
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_EQ(text.str(), "not ours");  // the file that was there is left as it was
+  const std::string text = read("c.json");
+  EXPECT_EQ(text, "not ours");  // the file that was there is left as it was
 }
 
 TEST_F(Cli, CriticalFrictionWritesAValidResultWithTheBracket) {
@@ -329,11 +319,9 @@ TEST_F(Cli, CriticalFrictionWritesAValidResultWithTheBracket) {
   const auto r = run("critical-friction -q " + write("m.json", box_model()) + " --target-alpha 0.3 --tolerance 1e-6 -o " +
                      path("c.json") + " --svg " + path("pictures"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream in(path("c.json"));
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_TRUE(rbla::io::validate_result_text(text.str()).empty()) << text.str().substr(0, 2000);
-  const auto c = nlohmann::json::parse(text.str()).at("critical_friction");
+  const std::string text = read("c.json");
+  EXPECT_TRUE(rbla::io::validate_result_text(text).empty()) << text.substr(0, 2000);
+  const auto c = nlohmann::json::parse(text).at("critical_friction");
   EXPECT_EQ(c.at("outcome"), "bracketed");
   EXPECT_NEAR(c.at("friction").get<double>(), 0.3, 1e-6);
   EXPECT_LE(c.at("factor_lower").get<double>(), c.at("factor").get<double>());
