@@ -1,7 +1,7 @@
 #include "analysis/critical_friction.hpp"
 
 #include "analysis/text.hpp"
-#include "analysis/warm_starts.hpp"
+#include "analysis/search_analyses.hpp"
 #include "model/errors.hpp"
 
 #include <algorithm>
@@ -126,21 +126,14 @@ CriticalFriction find_critical_friction(const model::Model& model, std::optional
   // of 2: the problems differ only in the friction coefficients, by less and less as the
   // bracket narrows. On the 1920-block facade (target alpha 0.2) the seven analyses took 152
   // interior-point iterations instead of 170; warm starts from further away cost more than cold.
-  WarmStarts points(std::log(2.0));
-  // The models differ only in numbers: one symbolic analysis serves them all (analysis/solver_reuse.hpp).
-  SolverReuse solvers;
+  SearchAnalyses analyses(std::log(2.0));
   auto evaluate = [&](double factor) {
     const Eigen::VectorXd where = Eigen::VectorXd::Constant(1, std::log(factor));
-    conic::Iterate start = points.nearest(where);
-    AnalysisOptions warm = options;
-    warm.warm_start = &start;
-    warm.reuse = &solvers;
     const auto evaluation_start = Clock::now();
     model::Model at_factor = model;
     for (int k : set) at_factor.interfaces[k].friction *= factor;
     at_factor.analysis.check_dead_load = true;  // standing is what every test asks first
-    AnalysisResult result = analyse(at_factor, warm);
-    points.keep(where, std::move(start));
+    AnalysisResult result = analyses.analyse_at(at_factor, options, where);
     const ThresholdSample sample = as_sample(result, target_alpha);
     c.evaluations.push_back({factor, result.verdict, result.load_multiplier, sample.passes, seconds_since(evaluation_start)});
     if ((sample.passes && factor < best_passing) || c.evaluations.size() == 1 ||
@@ -154,7 +147,7 @@ CriticalFriction find_critical_friction(const model::Model& model, std::optional
   const Threshold t = find_threshold(evaluate, settings);
   conclude(c, t, model.analysis.friction_model == model::FrictionModel::Associative);
   c.seconds = seconds_since(start);
-  c.symbolic_analyses = solvers.built();
+  c.symbolic_analyses = analyses.symbolic_analyses();
   return c;
 }
 

@@ -1,7 +1,7 @@
 #include "analysis/worst_direction.hpp"
 
 #include "analysis/text.hpp"
-#include "analysis/warm_starts.hpp"
+#include "analysis/search_analyses.hpp"
 #include "model/errors.hpp"
 
 #include <cmath>
@@ -99,11 +99,9 @@ WorstDirection find_worst_direction(const model::Model& model, const AnalysisOpt
   search_settings.convex = model.analysis.friction_model == model::FrictionModel::Associative;
 
   double best_radius = std::numeric_limits<double>::infinity();
-  // Each direction starts from the interior point of the nearest one evaluated within 30 degrees
-  // (analysis/warm_starts.hpp).
-  WarmStarts points(2.0 * std::sin(kPi / 12.0));
-  // The models differ only in numbers: one symbolic analysis serves them all (analysis/solver_reuse.hpp).
-  SolverReuse solvers;
+  // Each direction starts from the interior point of the nearest one evaluated within 30 degrees,
+  // on the search's kept solver (analysis/search_analyses.hpp).
+  SearchAnalyses analyses(2.0 * std::sin(kPi / 12.0));
   auto evaluate = [&](double angle) {
     const auto evaluation_start = Clock::now();
     model::Model turned = model;
@@ -111,12 +109,7 @@ WorstDirection find_worst_direction(const model::Model& model, const AnalysisOpt
     // Whether alpha = 0 is admissible does not depend on the direction: checked once.
     turned.analysis.check_dead_load = model.analysis.check_dead_load && w.evaluations.empty();
     const Eigen::VectorXd where = Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    conic::Iterate start = points.nearest(where);
-    AnalysisOptions warm = options;
-    warm.warm_start = &start;
-    warm.reuse = &solvers;
-    AnalysisResult result = analyse(turned, warm);
-    points.keep(where, std::move(start));
+    AnalysisResult result = analyses.analyse_at(turned, options, where);
     RadialSample sample = as_sample(result);
     add_mechanism_bound(turned, result, w, sample);
     w.evaluations.push_back({angle, *turned.analysis.seismic_direction, result.verdict, result.load_multiplier,
@@ -132,7 +125,7 @@ WorstDirection find_worst_direction(const model::Model& model, const AnalysisOpt
   const RadialMinimum search = minimise_radius(evaluate, search_settings);
   conclude(w, search, search_settings);
   w.seconds = seconds_since(start);
-  w.symbolic_analyses = solvers.built();
+  w.symbolic_analyses = analyses.symbolic_analyses();
   return w;
 }
 

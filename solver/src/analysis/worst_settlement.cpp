@@ -2,7 +2,7 @@
 
 #include "analysis/initial_reaction.hpp"
 #include "analysis/text.hpp"
-#include "analysis/warm_starts.hpp"
+#include "analysis/search_analyses.hpp"
 #include "model/errors.hpp"
 
 #include <algorithm>
@@ -155,23 +155,16 @@ WorstSettlement find_worst_settlement(const model::Model& model, const AnalysisO
   search_settings.concave = associative;
 
   double best_ratio = -std::numeric_limits<double>::infinity();
-  // Each direction starts from the interior point of the nearest one evaluated within 15 degrees
-  // (analysis/warm_starts.hpp).
-  WarmStarts points(2.0 * std::sin(kPi / 24.0));
-  // The models differ only in numbers: one symbolic analysis serves them all (analysis/solver_reuse.hpp).
-  SolverReuse solvers;
+  // Each direction starts from the interior point of the nearest one evaluated within 15 degrees,
+  // on the search's kept solver (analysis/search_analyses.hpp).
+  SearchAnalyses analyses(2.0 * std::sin(kPi / 24.0));
   auto evaluate = [&](const Eigen::Vector3d& direction) {
     const auto evaluation_start = Clock::now();
     model::Model turned = model;
     turned.analysis.settlement_direction = direction;
     // Whether the structure stands at all does not depend on the direction: checked once.
     turned.analysis.check_dead_load = model.analysis.check_dead_load && w.evaluations.empty();
-    conic::Iterate start = points.nearest(direction);
-    AnalysisOptions warm = options;
-    warm.warm_start = &start;
-    warm.reuse = &solvers;
-    AnalysisResult result = analyse(turned, warm);
-    points.keep(direction, std::move(start));
+    AnalysisResult result = analyses.analyse_at(turned, options, direction);
     SettlementEvaluation e;
     e.direction = direction;
     place(model, w.axis_x, w.axis_y, e);
@@ -193,7 +186,7 @@ WorstSettlement find_worst_settlement(const model::Model& model, const AnalysisO
   const ConeMaximum search = find_cone_maximum(evaluate, cone, search_settings);
   conclude(model, w, search, search_settings);
   w.seconds = seconds_since(start);
-  w.symbolic_analyses = solvers.built();
+  w.symbolic_analyses = analyses.symbolic_analyses();
   return w;
 }
 
