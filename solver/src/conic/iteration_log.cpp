@@ -11,10 +11,12 @@ void print_banner(std::ostream& out, const ConicProblem& p, const NormalEquation
       line, sizeof line,
       "rbla conic interior point (HSDE, NT scaling, Mehrotra predictor-corrector)\n"
       "  rows %lld, variables %lld, nnz(A) %lld, nonnegative %lld, second-order cones %zu\n"
-      "  dense columns %d, nnz(M) %ld, nnz(L) %ld, factor %.2e flops %.0f MB, %s\n",
+      "  dense columns %d, fixed rows eliminated %d, nnz(M) %ld, nnz(L) %ld, factor %.2e flops "
+      "%.0f MB, %s\n",
       static_cast<long long>(p.A.rows()), static_cast<long long>(p.A.cols()),
       static_cast<long long>(p.A.nonZeros()), static_cast<long long>(p.cones.num_nonneg),
-      p.cones.soc_dims.size(), info.num_dense_columns, normal.num_matrix_nonzeros(),
+      p.cones.soc_dims.size(), info.num_dense_columns, normal.num_fixed_rows(),
+      normal.num_matrix_nonzeros(),
       info.num_factor_nonzeros, normal.factor_flops(), info.factor_bytes / 1e6,
       info.backend.c_str());
   out << line

@@ -19,8 +19,9 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
                                  const std::vector<ScalingBlock>& blocks,
                                  const std::vector<bool>& is_dense_column, Ordering ordering,
-                                 ForkJoin* fork_join)
-    : m_(A.rows()), fork_join_(fork_join) {
+                                 ForkJoin* fork_join, int min_fixed_rows)
+    : m_(A.rows()), full_m_(A.rows()), fork_join_(fork_join) {
+  find_fixed_rows(A, blocks, is_dense_column, min_fixed_rows);
   std::vector<std::vector<int>> lower_rows_of_col(static_cast<std::size_t>(m_));
   collect_blocks(A, blocks, is_dense_column, lower_rows_of_col);
   build_pattern(lower_rows_of_col);
@@ -39,8 +40,9 @@ NormalEquations::NormalEquations(const Eigen::SparseMatrix<double>& A,
   if (!dense_blocks_.empty()) dense_D_.setZero(m_, static_cast<Eigen::Index>(dense_blocks_.size()));
 }
 
-// Per block: its rows, where its entries of A go in the local dense copy of its columns, and
-// (unless it is a dense column) the rows its terms add to in each column of M's lower triangle.
+// Per block: its rows (of M̃), where its entries of A go in the local dense copy of its columns
+// (or, on a fixed row, in fixed_a_), and (unless it is a dense column) the rows its terms add to
+// in each column of M̃'s lower triangle.
 void NormalEquations::collect_blocks(const Eigen::SparseMatrix<double>& A,
                                      const std::vector<ScalingBlock>& blocks,
                                      const std::vector<bool>& is_dense_column,
@@ -56,7 +58,10 @@ void NormalEquations::collect_blocks(const Eigen::SparseMatrix<double>& A,
     bd.size = static_cast<int>(sb.size);
     bd.dense = sb.size == 1 && is_dense_column[static_cast<std::size_t>(sb.first)];
     for (Eigen::Index j = sb.first; j < sb.first + sb.size; ++j) {
-      bd.rows.insert(bd.rows.end(), inner + outer[j], inner + outer[j + 1]);
+      for (int p = outer[j]; p < outer[j + 1]; ++p) {
+        const int row = row_of_M(inner[p]);
+        if (row >= 0) bd.rows.push_back(row);
+      }
     }
     std::sort(bd.rows.begin(), bd.rows.end());
     bd.rows.erase(std::unique(bd.rows.begin(), bd.rows.end()), bd.rows.end());
@@ -66,7 +71,12 @@ void NormalEquations::collect_blocks(const Eigen::SparseMatrix<double>& A,
     bd.map_offset = map_total;
     for (Eigen::Index j = sb.first; j < sb.first + sb.size; ++j) {
       for (int p = outer[j]; p < outer[j + 1]; ++p) {
-        const auto a = std::lower_bound(bd.rows.begin(), bd.rows.end(), inner[p]) - bd.rows.begin();
+        const int row = row_of_M(inner[p]);
+        if (row < 0) {  // a fixed row: −1 − its index in fixed_a_
+          nnz_to_local_[static_cast<std::size_t>(p)] = row;
+          continue;
+        }
+        const auto a = std::lower_bound(bd.rows.begin(), bd.rows.end(), row) - bd.rows.begin();
         nnz_to_local_[static_cast<std::size_t>(p)] = static_cast<int>(
             a_total + static_cast<std::size_t>(a) + r * static_cast<std::size_t>(j - sb.first));
       }
@@ -84,6 +94,8 @@ void NormalEquations::collect_blocks(const Eigen::SparseMatrix<double>& A,
     }
     blocks_.push_back(std::move(bd));
   }
+  for (std::size_t f = 0; f < fixed_blocks_.size(); ++f)
+    blocks_[static_cast<std::size_t>(fixed_blocks_[f].block)].fixed = static_cast<int>(f);
   local_A_.assign(a_total, 0.0);
   packed_W2_.assign(w2_total, 0.0);
   value_map_.resize(map_total);
@@ -158,8 +170,13 @@ void NormalEquations::choose_backend(Ordering ordering) {
 
 void NormalEquations::set_A_values(const Eigen::SparseMatrix<double>& A) {
   const double* values = A.valuePtr();
-  for (std::size_t p = 0; p < nnz_to_local_.size(); ++p)
-    local_A_[static_cast<std::size_t>(nnz_to_local_[p])] = values[p];
+  for (std::size_t p = 0; p < nnz_to_local_.size(); ++p) {
+    const int to = nnz_to_local_[p];
+    if (to >= 0)
+      local_A_[static_cast<std::size_t>(to)] = values[p];
+    else
+      fixed_a_[static_cast<std::size_t>(-1 - to)] = values[p];
+  }
 }
 
 FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, double reg_static,
@@ -168,7 +185,12 @@ FactorReport NormalEquations::factor(const std::vector<double>& packed_W2, doubl
   FactorReport report;
   auto start = std::chrono::steady_clock::now();
   packed_W2_ = packed_W2;
+  if (!eliminate_fixed()) return report;
   assemble();
+  if (!fixed_blocks_.empty()) {
+    exact_values_ = values_;
+    subtract_fixed_terms();
+  }
   double max_diag = 0;
   for (int p : diag_pos_) max_diag = std::max(max_diag, values_[static_cast<std::size_t>(p)]);
   report.assembly_seconds = seconds_since(start);
@@ -246,7 +268,7 @@ void NormalEquations::factor_dense_schur() {
   dense_schur_.compute(schur);
 }
 
-void NormalEquations::add_block(const BlockData& bd, std::vector<double>& scratch) {
+void NormalEquations::add_block(const BlockData& bd, std::vector<double>& scratch, const double* W2_k) {
   const std::size_t r = bd.rows.size();
   const double* Ak = local_A_.data() + bd.a_offset;
   const int* pos = value_map_.data() + bd.map_offset;
@@ -263,10 +285,10 @@ void NormalEquations::add_block(const BlockData& bd, std::vector<double>& scratc
       else
         values_[p] += term;
     };
-    add_terms(bd, Ak, pos, scratch, add);
+    add_terms(bd, Ak, pos, scratch, add, W2_k);
     return;
   }
-  if (bd.size == 1) {
+  if (bd.size == 1 && !W2_k) {
     const double w = packed_W2_[bd.w2_offset];
     for (std::size_t b = 0; b < r; ++b) {
       const double wb = w * Ak[b];
@@ -274,23 +296,39 @@ void NormalEquations::add_block(const BlockData& bd, std::vector<double>& scratc
     }
     return;
   }
-  add_terms(bd, Ak, pos, scratch,
-            [this](std::size_t p, double term) { values_[p] += term; });
+  add_terms(bd, Ak, pos, scratch, [this](std::size_t p, double term) { values_[p] += term; }, W2_k);
 }
 
 template <class Add>
 void NormalEquations::add_terms(const BlockData& bd, const double* Ak, const int* pos,
-                                std::vector<double>& scratch, const Add& add) {
+                                std::vector<double>& scratch, const Add& add, const double* W2_k) {
   // B = A_k W²_k (r×q), then G = B A_kᵀ, lower triangle only.
   const Eigen::Index rr = static_cast<Eigen::Index>(bd.rows.size());
   Eigen::Map<const Eigen::MatrixXd> A_local(Ak, rr, bd.size);
-  Eigen::Map<const Eigen::MatrixXd> W2(packed_W2_.data() + bd.w2_offset, bd.size, bd.size);
+  Eigen::Map<const Eigen::MatrixXd> W2(W2_k ? W2_k : packed_W2_.data() + bd.w2_offset, bd.size, bd.size);
   Eigen::Map<Eigen::MatrixXd> B(scratch.data(), rr, bd.size);
   B.noalias() = A_local * W2;
   for (Eigen::Index b = 0; b < rr; ++b) {
     for (Eigen::Index a = b; a < rr; ++a) {
       add(static_cast<std::size_t>(*pos++), B.row(a).dot(A_local.row(b)));
     }
+  }
+}
+
+// The Schur complement's terms cancel much of M_KK's where W² is ill-conditioned (late in a
+// solve), so M̃ is only the preconditioner: CG multiplies by the exact M. With SplitCholesky the
+// separator–separator terms go to the block's share, as in assemble() (the split factor reads
+// them there).
+void NormalEquations::subtract_fixed_terms() {
+  Eigen::MatrixXd removed;
+  for (const FixedBlock& fb : fixed_blocks_) {
+    const BlockData& bd = blocks_[static_cast<std::size_t>(fb.block)];
+    const Eigen::Index e = static_cast<Eigen::Index>(fb.local.size());
+    Eigen::Map<const Eigen::MatrixXd> W2(packed_W2_.data() + bd.w2_offset, bd.size, bd.size);
+    Eigen::Map<const Eigen::MatrixXd> G(fixed_G_.data() + fb.G_offset, e, bd.size);
+    removed.setZero(bd.size, bd.size);
+    for (Eigen::Index a = 0; a < e; ++a) removed.noalias() -= W2.col(fb.local[static_cast<std::size_t>(a)]) * G.row(a);
+    add_block(bd, scratch_[0], removed.data());
   }
 }
 
@@ -316,17 +354,49 @@ void NormalEquations::solve_regularised(const Eigen::VectorXd& rhs, Eigen::Vecto
   solve_regularised(out.data(), 1);
 }
 
+void NormalEquations::precondition(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
+  if (reduced_row_.empty()) {
+    solve_regularised(rhs, out);
+    return;
+  }
+  Eigen::VectorXd& reduced = reduced_scratch_[0];
+  reduce(rhs, reduced);
+  solve_regularised(reduced.data(), 1);
+  expand(rhs, reduced, out);
+}
+
 void NormalEquations::solve_pair(const Eigen::VectorXd& rhs_a, const Eigen::VectorXd& rhs_b,
                                  Eigen::VectorXd& a, Eigen::VectorXd& b) {
   Eigen::MatrixXd both(m_, 2);
-  both.col(0) = rhs_a;
-  both.col(1) = rhs_b;
+  if (reduced_row_.empty()) {
+    both.col(0) = rhs_a;
+    both.col(1) = rhs_b;
+  } else {
+    Eigen::VectorXd reduced;
+    reduce(rhs_a, reduced);
+    both.col(0) = reduced;
+    reduce(rhs_b, reduced);
+    both.col(1) = reduced;
+  }
   solve_regularised(both.data(), 2);
-  a = both.col(0);
-  b = both.col(1);
+  if (reduced_row_.empty()) {
+    a = both.col(0);
+    b = both.col(1);
+  } else {
+    expand(rhs_a, both.col(0), a);
+    expand(rhs_b, both.col(1), b);
+  }
 }
 
 void NormalEquations::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
+  if (reduced_row_.empty())
+    multiply_lower(values_, v, out);
+  else
+    multiply_full(v, out);
+}
+
+void NormalEquations::multiply_lower(const std::vector<double>& lower, const Eigen::VectorXd& v,
+                                     Eigen::VectorXd& out) const {
   // M v from the lower triangle assembled for the last factorisation (exact M_s, the shift δ is
   // CHOLMOD's), plus A_k (W²_k (A_kᵀ v)) for the dense columns kept out of it. Called once per CG
   // step. Per block through A_k instead, a large share of a 3-D solve went there: every block
@@ -334,7 +404,7 @@ void NormalEquations::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) c
   ++num_multiplies_;
   const int* col_ptr = col_ptr_.data();
   const int* row_ind = row_ind_.data();
-  const double* values = values_.data();
+  const double* values = lower.data();
   auto columns = [&](Eigen::Index begin, Eigen::Index end, Eigen::VectorXd& into) {
     into.setZero(m_);
     for (Eigen::Index j = begin; j < end; ++j) {
@@ -375,7 +445,7 @@ int NormalEquations::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& dy, int 
   // (M_s + δI with the dense-column bordering). Unlike plain iterative refinement (Richardson),
   // CG also converges when a few eigenvalues of the preconditioned operator are far from 1,
   // which is what δ does to the near-null directions of M late in the iteration.
-  solve_regularised(rhs, dy);
+  precondition(rhs, dy);
   if (refine_max_iter == 0) return 0;
   Eigen::VectorXd residual, product, preconditioned, direction;
   multiply(dy, product);
@@ -384,7 +454,7 @@ int NormalEquations::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& dy, int 
   if (residual_norm <= target) return 0;
   Eigen::VectorXd best = dy;
   double best_norm = residual_norm;
-  solve_regularised(residual, preconditioned);
+  precondition(residual, preconditioned);
   direction = preconditioned;
   double rz = residual.dot(preconditioned);
   int steps = 0;
@@ -402,7 +472,7 @@ int NormalEquations::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& dy, int 
       best_norm = residual_norm;
     }
     if (residual_norm <= target) break;
-    solve_regularised(residual, preconditioned);
+    precondition(residual, preconditioned);
     const double rz_next = residual.dot(preconditioned);
     direction = preconditioned + (rz_next / rz) * direction;
     rz = rz_next;

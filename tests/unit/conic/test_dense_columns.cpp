@@ -85,6 +85,26 @@ TEST(ConicDenseColumns, OnlyDenseColumnCoversSomeRows) {
   EXPECT_NEAR(sol.info.primal_objective, 11.0, 1e-7);
 }
 
+namespace {
+/// W² blocks G Gᵀ + 0.1 I (G standard normal), packed as ConeSet::pack_W2 does, and the whole
+/// block-diagonal W² in `W2`.
+std::vector<double> random_W2(const std::vector<rbla::conic::detail::ScalingBlock>& blocks, int n,
+                              std::mt19937& rng, Eigen::MatrixXd& W2) {
+  std::normal_distribution<double> normal;
+  W2 = Eigen::MatrixXd::Zero(n, n);
+  std::vector<double> packed;
+  for (const auto& block : blocks) {
+    const auto q = block.size;
+    const Eigen::MatrixXd G = Eigen::MatrixXd::NullaryExpr(q, q, [&] { return normal(rng); });
+    const Eigen::MatrixXd spd = G * G.transpose() + 0.1 * Eigen::MatrixXd::Identity(q, q);
+    W2.block(block.first, block.first, q, q) = spd;
+    for (Eigen::Index j = 0; j < q; ++j)
+      for (Eigen::Index i = 0; i < q; ++i) packed.push_back(spd(i, j));
+  }
+  return packed;
+}
+}  // namespace
+
 TEST(ConicNormalEquations, ProductEqualsTheExplicitNormalMatrix) {
   // M v = A W² Aᵀ v with W² block diagonal (scalars, 3×3 and 4×4 SOC blocks) and one dense
   // column kept out of the sparse factor: the product CG refines with must be the exact M.
@@ -113,16 +133,8 @@ TEST(ConicNormalEquations, ProductEqualsTheExplicitNormalMatrix) {
   NormalEquations normal_equations(A, blocks, is_dense, rbla::conic::Ordering::Amd, nullptr);
   ASSERT_EQ(normal_equations.num_dense_columns(), 1);
 
-  Eigen::MatrixXd W2 = Eigen::MatrixXd::Zero(n, n);
-  std::vector<double> packed;
-  for (const ScalingBlock& block : blocks) {
-    const auto q = block.size;
-    const Eigen::MatrixXd G = Eigen::MatrixXd::NullaryExpr(q, q, [&] { return normal(rng); });
-    const Eigen::MatrixXd spd = G * G.transpose() + 0.1 * Eigen::MatrixXd::Identity(q, q);
-    W2.block(block.first, block.first, q, q) = spd;
-    for (Eigen::Index j = 0; j < q; ++j)
-      for (Eigen::Index i = 0; i < q; ++i) packed.push_back(spd(i, j));
-  }
+  Eigen::MatrixXd W2;
+  const std::vector<double> packed = random_W2(blocks, n, rng, W2);
   ASSERT_TRUE(normal_equations.factor(packed, 1e-8, 10.0, 5).ok);
   const Eigen::MatrixXd M = Eigen::MatrixXd(A) * W2 * Eigen::MatrixXd(A).transpose();
   const Eigen::VectorXd v = Eigen::VectorXd::NullaryExpr(rows, [&] { return normal(rng); });
@@ -133,4 +145,64 @@ TEST(ConicNormalEquations, ProductEqualsTheExplicitNormalMatrix) {
   Eigen::VectorXd dy;
   normal_equations.solve(M * v, dy, 10, 1e-10);
   EXPECT_LT((M * dy - M * v).lpNorm<Eigen::Infinity>(), 1e-10);
+}
+
+TEST(ConicNormalEquations, FixedRowsAreEliminatedExactly) {
+  // Rows with one nonzero in a column with no other nonzero (a cone coordinate fixed by its own
+  // row, as a capped friction cone's radius) are eliminated before factoring: the product, the
+  // solve and the pair solve must be those of the explicit M = A W² Aᵀ over every row.
+  using namespace rbla::conic::detail;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal;
+  const int coupled_rows = 20;
+  std::vector<ScalingBlock> blocks;
+  std::vector<Eigen::Triplet<double>> triplets;
+  int n = 0, rows = coupled_rows;
+  for (int k = 0; k < 6; ++k) blocks.push_back({n++, 1});
+  for (int k = 0; k < 8; ++k) {
+    blocks.push_back({n, 3});
+    n += 3;
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int t = 0; t < 3; ++t) triplets.emplace_back(static_cast<int>(rng() % coupled_rows), j, normal(rng));
+  }
+  // The first coordinate of each 3-cone fixed by a row of its own; one 4-cone with two fixed.
+  std::vector<Eigen::Triplet<double>> all;
+  for (const auto& t : triplets) {
+    const bool fixed = t.col() >= 6 && (t.col() - 6) % 3 == 0;
+    if (!fixed) all.push_back(t);
+  }
+  for (int k = 0; k < 8; ++k) all.emplace_back(rows++, 6 + 3 * k, 0.5 + k);
+  blocks.push_back({n, 4});
+  for (int j = n + 2; j < n + 4; ++j) all.emplace_back(static_cast<int>(rng() % coupled_rows), j, normal(rng));
+  all.emplace_back(rows++, n, -2.0);
+  all.emplace_back(rows++, n + 1, 3.0);
+  n += 4;
+  Eigen::SparseMatrix<double> A(rows, n);
+  A.setFromTriplets(all.begin(), all.end());
+  NormalEquations normal_equations(A, blocks, std::vector<bool>(static_cast<std::size_t>(n), false),
+                                   rbla::conic::Ordering::Amd, nullptr, 1);
+  ASSERT_EQ(normal_equations.num_fixed_rows(), 10);
+  EXPECT_EQ(NormalEquations(A, blocks, std::vector<bool>(static_cast<std::size_t>(n), false),
+                            rbla::conic::Ordering::Amd, nullptr, 11)
+                .num_fixed_rows(),
+            0)
+      << "fewer fixed rows than asked for stay in M";
+
+  Eigen::MatrixXd W2;
+  const std::vector<double> packed = random_W2(blocks, n, rng, W2);
+  ASSERT_TRUE(normal_equations.factor(packed, 1e-12, 10.0, 5).ok);
+  const Eigen::MatrixXd M = Eigen::MatrixXd(A) * W2 * Eigen::MatrixXd(A).transpose();
+  const Eigen::VectorXd v = Eigen::VectorXd::NullaryExpr(rows, [&] { return normal(rng); });
+  Eigen::VectorXd product;
+  normal_equations.multiply(v, product);
+  EXPECT_LT((product - M * v).norm(), 1e-12 * (M * v).norm());
+  const Eigen::VectorXd rhs = M * v;
+  Eigen::VectorXd dy;
+  normal_equations.solve(rhs, dy, 10, 1e-11);
+  EXPECT_LT((dy - v).lpNorm<Eigen::Infinity>(), 1e-8 * v.lpNorm<Eigen::Infinity>());
+  Eigen::VectorXd a, b;
+  normal_equations.solve_pair(rhs, 2.0 * rhs, a, b);
+  EXPECT_LT((a - v).lpNorm<Eigen::Infinity>(), 1e-6 * v.lpNorm<Eigen::Infinity>());
+  EXPECT_LT((b - 2.0 * v).lpNorm<Eigen::Infinity>(), 2e-6 * v.lpNorm<Eigen::Infinity>());
 }

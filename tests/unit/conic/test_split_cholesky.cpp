@@ -66,6 +66,52 @@ NormalCase wall_normal_case(int nx, int ny, double decades, unsigned seed) {
   return c;
 }
 
+/// The wall case with a capped copy of each cone, as the non-associative fixed-point test builds
+/// them: (ρ, T₁, T₂) with T's columns those of the cone's last two coordinates and ρ fixed by a
+/// row of its own. The fixed rows come last; W² of the new blocks as in wall_normal_case.
+NormalCase capped_wall_case(int nx, int ny, double decades, unsigned seed) {
+  NormalCase c = wall_normal_case(nx, ny, decades, seed);
+  const Eigen::Index m = c.A.rows(), n = c.A.cols();
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(c.A, j); it; ++it)
+      triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(j), it.value());
+  }
+  std::mt19937 rng(seed + 1);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> exponent(-decades, decades);
+  const std::vector<ScalingBlock> cones = c.blocks;
+  Eigen::Index col = n, row = m;
+  std::vector<Eigen::Triplet<double>> w2;
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(c.W2, i); it; ++it)
+      w2.emplace_back(static_cast<int>(it.row()), static_cast<int>(i), it.value());
+  for (const ScalingBlock& cone : cones) {
+    if (cone.size != 3) continue;
+    triplets.emplace_back(static_cast<int>(row++), static_cast<int>(col), 1.0 + 0.5 * normal(rng) * normal(rng));
+    for (int k = 1; k < 3; ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(c.A, cone.first + k); it; ++it)
+        triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(col + k), it.value());
+    }
+    c.blocks.push_back({col, 3});
+    const Eigen::MatrixXd G = Eigen::MatrixXd::NullaryExpr(3, 3, [&] { return normal(rng); });
+    const Eigen::MatrixXd spd =
+        std::pow(10.0, exponent(rng)) * (G * G.transpose() + 0.1 * Eigen::MatrixXd::Identity(3, 3));
+    for (Eigen::Index j = 0; j < 3; ++j) {
+      for (Eigen::Index i = 0; i < 3; ++i) {
+        c.packed_W2.push_back(spd(i, j));
+        w2.emplace_back(static_cast<int>(col + i), static_cast<int>(col + j), spd(i, j));
+      }
+    }
+    col += 3;
+  }
+  c.A.resize(row, col);
+  c.A.setFromTriplets(triplets.begin(), triplets.end());
+  c.W2.resize(col, col);
+  c.W2.setFromTriplets(w2.begin(), w2.end());
+  return c;
+}
+
 }  // namespace
 
 TEST(ConicSplitCholesky, SolvesWhatOneFactorSolves) {
@@ -221,4 +267,38 @@ TEST(ConicForkJoin, RunsBothHalvesAndPassesOnExceptions) {
   const std::function<void()> nothing = [] {};
   fork_join.run(count_call, nothing);
   EXPECT_EQ(calls, 1);
+}
+
+TEST(ConicSplitCholesky, FixedRowsOnTwoThreads) {
+  // Capped cones' radius rows are eliminated before factoring (normal_equations.hpp); on two
+  // threads the elimination's separator terms go to the domains' shares. A refined solve must
+  // reach the explicit M's answer with one factor and with the split alike.
+  const NormalCase c = capped_wall_case(14, 18, 2.0, 5);
+  const std::vector<bool> no_dense(static_cast<std::size_t>(c.A.cols()), false);
+  ForkJoin fork_join;
+  const Eigen::SparseMatrix<double> M =
+      (c.A * c.W2) * Eigen::SparseMatrix<double>(c.A.transpose());
+  std::mt19937 rng(17);
+  std::normal_distribution<double> normal;
+  const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(M.rows(), [&] { return normal(rng); });
+  const Eigen::VectorXd rhs = M * x;
+  std::vector<Eigen::VectorXd> plain;
+  for (ForkJoin* threads : {static_cast<ForkJoin*>(nullptr), &fork_join}) {
+    NormalEquations ne(c.A, c.blocks, no_dense, Ordering::Best, threads, 1);
+    const std::string where = threads ? "split" : "one factor";
+    ASSERT_EQ(ne.is_split(), threads != nullptr);
+    ASSERT_GT(ne.num_fixed_rows(), 100) << where;
+    ASSERT_TRUE(ne.factor(c.packed_W2, 1e-12, 100.0, 8).ok) << where;
+    Eigen::VectorXd product;
+    ne.multiply(x, product);
+    EXPECT_LT((product - rhs).lpNorm<Eigen::Infinity>(), 1e-12 * rhs.lpNorm<Eigen::Infinity>()) << where;
+    plain.emplace_back();
+    ne.solve(rhs, plain.back(), 0, 0.0);  // the factor alone
+    Eigen::VectorXd solved;
+    ne.solve(rhs, solved, 50, 1e-10 * rhs.lpNorm<Eigen::Infinity>());
+    EXPECT_LT((M * solved - rhs).lpNorm<Eigen::Infinity>(), 1e-9 * rhs.lpNorm<Eigen::Infinity>()) << where;
+    EXPECT_LT((solved - x).lpNorm<Eigen::Infinity>(), 1e-5 * x.lpNorm<Eigen::Infinity>()) << where;
+  }
+  // Unrefined, the two factors solve the same regularised system.
+  EXPECT_LT((plain[1] - plain[0]).lpNorm<Eigen::Infinity>(), 1e-8 * plain[0].lpNorm<Eigen::Infinity>());
 }
