@@ -204,9 +204,10 @@ PointSpec friction_variables(const FormulationOptions& options, double mu, const
   spec.has_radius_row = true;
   spec.orthant.push_back({n, false});
   if (options.planar) {
-    spec.orthant.push_back({t1, true});
-    spec.orthant.push_back({-t1, true});
-    spec.orthant.push_back({Vec3::Zero(), true});  // slack of |T| <= r
+    // (rho, T) in Q^2, i.e. |T| <= rho, with rho = r fixed by the radius row: a row with one
+    // entry, which the conic solver eliminates before factoring (T+ - T- with a slack would
+    // make it a row of three).
+    spec.cone = {{Vec3::Zero(), true}, {t1, false}};
   } else if (pyramid) {
     for (int j = 0; j < m; ++j) spec.orthant.push_back({edge_factor * edge(j), true});
     spec.orthant.push_back({Vec3::Zero(), true});

@@ -127,6 +127,7 @@ class NormalEquations {
     bool dense = false;
     signed char separator_share = -1;  // SplitCholesky domain whose share gets its SS terms
     int fixed = -1;                    // into fixed_blocks_, when it has fixed coordinates
+    int fixed_column = -1;             // its one fixed coordinate (block-local), if one
   };
   /// A block's coordinates fixed by rows of their own (see the top of this file).
   struct FixedBlock {
@@ -183,7 +184,7 @@ class NormalEquations {
   std::vector<double> exact_values_;  // M_KK before the elimination (what CG multiplies by)
   std::vector<double> fixed_G_, fixed_EE_inverse_;
   int max_block_size_ = 0;
-  mutable Eigen::VectorXd reduced_scratch_[3];  // precondition()'s, multiply_full()'s v and out
+  mutable Eigen::VectorXd reduced_scratch_[4];  // precondition()'s, multiply_full()'s v and out, reduce()'s second half
   std::vector<BlockData> blocks_;
   std::vector<int> dense_blocks_;  // indices into blocks_
   std::vector<double> local_A_;

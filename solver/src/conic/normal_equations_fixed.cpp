@@ -4,7 +4,10 @@
 
 #include "normal_equations.hpp"
 
+#include "fork_join.hpp"
+
 #include <algorithm>
+#include <functional>
 
 namespace rbla::conic::detail {
 
@@ -97,6 +100,10 @@ void NormalEquations::block_At(const BlockData& bd, const Eigen::VectorXd& v, do
   const std::size_t r = bd.rows.size();
   const double* Ak = local_A_.data() + bd.a_offset;  // r × q, column-major
   for (int j = 0; j < bd.size; ++j) {
+    if (j == bd.fixed_column) {  // zero on the rows that are not fixed
+      t[j] = 0.0;
+      continue;
+    }
     double sum = 0.0;
     for (std::size_t a = 0; a < r; ++a) sum += Ak[a + r * static_cast<std::size_t>(j)] * v[bd.rows[a]];
     t[j] = sum;
@@ -107,7 +114,7 @@ void NormalEquations::add_block_A(const BlockData& bd, const double* g, Eigen::V
   const std::size_t r = bd.rows.size();
   const double* Ak = local_A_.data() + bd.a_offset;
   for (int j = 0; j < bd.size; ++j) {
-    if (g[j] == 0.0) continue;
+    if (g[j] == 0.0 || j == bd.fixed_column) continue;
     for (std::size_t a = 0; a < r; ++a) out[bd.rows[a]] += Ak[a + r * static_cast<std::size_t>(j)] * g[j];
   }
 }
@@ -117,49 +124,76 @@ void NormalEquations::fixed_rhs(const FixedBlock& fb, const Eigen::VectorXd& ful
     u[e] = full[fb.rows[e]] / fixed_a_[static_cast<std::size_t>(fb.a_at[e])];
 }
 
-// r̃ = r_K − Σ A_R Gᵀ (r_E / a).
+// r̃ = r_K − Σ A_R Gᵀ (r_E / a). With fork_join_ the second half of the fixed blocks adds into
+// a vector of its own (blocks of the two halves share rows), summed after.
 void NormalEquations::reduce(const Eigen::VectorXd& full, Eigen::VectorXd& reduced) const {
   reduced.resize(m_);
   for (std::size_t i = 0; i < reduced_row_.size(); ++i) {
     if (reduced_row_[i] >= 0) reduced[reduced_row_[i]] = full[static_cast<Eigen::Index>(i)];
   }
-  std::vector<double> u(static_cast<std::size_t>(max_block_size_)), g(static_cast<std::size_t>(max_block_size_));
-  for (const FixedBlock& fb : fixed_blocks_) {
-    const BlockData& bd = blocks_[static_cast<std::size_t>(fb.block)];
-    const std::size_t e = fb.rows.size();
-    const double* G = fixed_G_.data() + fb.G_offset;
-    fixed_rhs(fb, full, u.data());
-    for (int j = 0; j < bd.size; ++j) {
-      double sum = 0.0;
-      for (std::size_t a = 0; a < e; ++a) sum += G[a + e * static_cast<std::size_t>(j)] * u[a];
-      g[static_cast<std::size_t>(j)] = -sum;
+  auto subtract = [&](std::size_t begin, std::size_t end, Eigen::VectorXd& into) {
+    std::vector<double> u(static_cast<std::size_t>(max_block_size_)), g(static_cast<std::size_t>(max_block_size_));
+    for (std::size_t k = begin; k < end; ++k) {
+      const FixedBlock& fb = fixed_blocks_[k];
+      const BlockData& bd = blocks_[static_cast<std::size_t>(fb.block)];
+      const std::size_t e = fb.rows.size();
+      const double* G = fixed_G_.data() + fb.G_offset;
+      fixed_rhs(fb, full, u.data());
+      for (int j = 0; j < bd.size; ++j) {
+        double sum = 0.0;
+        for (std::size_t a = 0; a < e; ++a) sum += G[a + e * static_cast<std::size_t>(j)] * u[a];
+        g[static_cast<std::size_t>(j)] = -sum;
+      }
+      add_block_A(bd, g.data(), into);
     }
-    add_block_A(bd, g.data(), reduced);
+  };
+  const std::size_t n = fixed_blocks_.size();
+  if (!fork_join_) {
+    subtract(0, n, reduced);
+    return;
   }
+  Eigen::VectorXd& other = reduced_scratch_[3];
+  other.setZero(m_);
+  const std::function<void()> first = [&] { subtract(0, n / 2, reduced); };
+  const std::function<void()> second = [&] { subtract(n / 2, n, other); };
+  fork_join_->run(first, second);
+  reduced += other;
 }
 
-// dy_K from the reduced solve; dy_E = ((W²_EE)⁻¹ (r_E / a) − G A_Rᵀ dy_K) / a.
+// dy_K from the reduced solve; dy_E = ((W²_EE)⁻¹ (r_E / a) − G A_Rᵀ dy_K) / a. Each fixed block
+// writes only its own rows, so the two halves run on two threads without sharing.
 void NormalEquations::expand(const Eigen::VectorXd& full_rhs, const Eigen::VectorXd& reduced,
                              Eigen::VectorXd& full) const {
   full.resize(full_m_);
   for (std::size_t i = 0; i < reduced_row_.size(); ++i) {
     if (reduced_row_[i] >= 0) full[static_cast<Eigen::Index>(i)] = reduced[reduced_row_[i]];
   }
-  std::vector<double> u(static_cast<std::size_t>(max_block_size_)), t(static_cast<std::size_t>(max_block_size_));
-  for (const FixedBlock& fb : fixed_blocks_) {
-    const BlockData& bd = blocks_[static_cast<std::size_t>(fb.block)];
-    const std::size_t e = fb.rows.size();
-    const double* G = fixed_G_.data() + fb.G_offset;
-    const double* EE_inverse = fixed_EE_inverse_.data() + fb.EE_offset;
-    fixed_rhs(fb, full_rhs, u.data());
-    block_At(bd, reduced, t.data());
-    for (std::size_t a = 0; a < e; ++a) {
-      double dy = 0.0;
-      for (std::size_t b = 0; b < e; ++b) dy += EE_inverse[a + e * b] * u[b];
-      for (int j = 0; j < bd.size; ++j) dy -= G[a + e * static_cast<std::size_t>(j)] * t[static_cast<std::size_t>(j)];
-      full[fb.rows[a]] = dy / fixed_a_[static_cast<std::size_t>(fb.a_at[a])];
+  auto recover = [&](std::size_t begin, std::size_t end) {
+    std::vector<double> u(static_cast<std::size_t>(max_block_size_)), t(static_cast<std::size_t>(max_block_size_));
+    for (std::size_t k = begin; k < end; ++k) {
+      const FixedBlock& fb = fixed_blocks_[k];
+      const BlockData& bd = blocks_[static_cast<std::size_t>(fb.block)];
+      const std::size_t e = fb.rows.size();
+      const double* G = fixed_G_.data() + fb.G_offset;
+      const double* EE_inverse = fixed_EE_inverse_.data() + fb.EE_offset;
+      fixed_rhs(fb, full_rhs, u.data());
+      block_At(bd, reduced, t.data());
+      for (std::size_t a = 0; a < e; ++a) {
+        double dy = 0.0;
+        for (std::size_t b = 0; b < e; ++b) dy += EE_inverse[a + e * b] * u[b];
+        for (int j = 0; j < bd.size; ++j) dy -= G[a + e * static_cast<std::size_t>(j)] * t[static_cast<std::size_t>(j)];
+        full[fb.rows[a]] = dy / fixed_a_[static_cast<std::size_t>(fb.a_at[a])];
+      }
     }
+  };
+  const std::size_t n = fixed_blocks_.size();
+  if (!fork_join_) {
+    recover(0, n);
+    return;
   }
+  const std::function<void()> first = [&] { recover(0, n / 2); };
+  const std::function<void()> second = [&] { recover(n / 2, n); };
+  fork_join_->run(first, second);
 }
 
 // M_KK v_K from exact_values_; with t = A_Rᵀ v_K and w = a v_E, a fixed block adds its coupling
