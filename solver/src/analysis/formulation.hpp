@@ -21,7 +21,8 @@ using model::Vec3;
 
 /// A planar scene: every free block a right prism along `axis` over the same depth, every
 /// interface spanning that depth, every load in the mid-plane (formulation.cpp says why that is
-/// exact). Then each block has 3 equations and the problem is a linear program.
+/// exact). Then each block has 3 equations and the problem is a linear program (the capped
+/// problem of the non-associative test excepted: its |T| <= r is a two-dimensional cone).
 struct PlanarFrame {
   bool planar = false;
   int axis = -1;              ///< extrusion axis (0 x, 1 y, 2 z)
@@ -58,7 +59,8 @@ struct FormulationPoint {
   double force_scale = 1.0;  ///< kN per unit of this point's variables (its interface's scale)
   double load = 1.0;         ///< kN: the smaller load carried by its interface's blocks (ForceScales::interface_load)
   std::vector<Generator> generators;
-  int radius_row = -1;  ///< cylinder: the row fixing the radius (sum of tangential budget = r)
+  int radius_row = -1;  ///< cylinder: the row fixing the radius (rho = r; the pyramid's: sum of the
+                        ///< tangential budget and its slack = r)
 };
 
 struct FormulationOptions {

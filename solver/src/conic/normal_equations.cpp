@@ -238,6 +238,10 @@ void NormalEquations::assemble() {
     for (int k : domain_blocks_[1]) add_block(blocks_[static_cast<std::size_t>(k)], scratch_[1]);
   };
   fork_join_->run(domain0, domain1);
+  sum_separator_shares();
+}
+
+void NormalEquations::sum_separator_shares() {
   const std::vector<int>& positions = split_->split().separator_positions();
   for (std::size_t slot = 0; slot < positions.size(); ++slot)
     values_[static_cast<std::size_t>(positions[slot])] =
@@ -333,6 +337,7 @@ void NormalEquations::subtract_fixed_terms() {
     for (Eigen::Index a = 0; a < e; ++a) removed.noalias() -= W2.col(fb.local[static_cast<std::size_t>(a)]) * G.row(a);
     add_block(bd, scratch_[0], removed.data());
   }
+  if (split_) sum_separator_shares();  // values_ agrees with the shares (the diagonal, δ)
 }
 
 void NormalEquations::solve_factor(double* x, int columns) { solver_->solve(x, columns); }

@@ -167,6 +167,8 @@ class NormalEquations {
   void build_value_map();
   void choose_backend(Ordering ordering);
   void assemble();
+  /// values_ at the separator–separator positions from the two domains' shares.
+  void sum_separator_shares();
   void factor_dense_schur();
   /// Adds block bd's terms A_k W²_k A_kᵀ to M (or to its domain's separator share).
   /// W2_k: the q×q matrix to use instead of the block's packed W² (null: the packed one).

@@ -3,6 +3,7 @@
 
 #include <random>
 
+#include "../../../solver/src/conic/fork_join.hpp"
 #include "../../../solver/src/conic/normal_equations.hpp"
 #include "random_problem.hpp"
 #include "rbla/conic/solver.hpp"
@@ -147,62 +148,119 @@ TEST(ConicNormalEquations, ProductEqualsTheExplicitNormalMatrix) {
   EXPECT_LT((M * dy - M * v).lpNorm<Eigen::Infinity>(), 1e-10);
 }
 
-TEST(ConicNormalEquations, FixedRowsAreEliminatedExactly) {
-  // Rows with one nonzero in a column with no other nonzero (a cone coordinate fixed by its own
-  // row, as a capped friction cone's radius) are eliminated before factoring: the product, the
-  // solve and the pair solve must be those of the explicit M = A W² Aᵀ over every row.
-  using namespace rbla::conic::detail;
-  std::mt19937 rng(5);
+namespace {
+
+/// A problem with fixed rows: 20 coupled rows; 6 scalars and 8 3-cones each with its first
+/// coordinate fixed by a row of its own; a 4-cone with two fixed. With `extras`, column 0 touches
+/// every coupled row (a dense column) and one more scalar is fixed by a row of its own (a block
+/// with nothing left in M).
+struct FixedRowsCase {
+  Eigen::SparseMatrix<double> A;
+  std::vector<rbla::conic::detail::ScalingBlock> blocks;
+  std::vector<bool> is_dense;
+  int num_fixed = 0;
+};
+
+FixedRowsCase fixed_rows_case(std::mt19937& rng, bool extras) {
   std::normal_distribution<double> normal;
   const int coupled_rows = 20;
-  std::vector<ScalingBlock> blocks;
-  std::vector<Eigen::Triplet<double>> triplets;
+  FixedRowsCase c;
+  std::vector<Eigen::Triplet<double>> all;
   int n = 0, rows = coupled_rows;
-  for (int k = 0; k < 6; ++k) blocks.push_back({n++, 1});
+  for (int k = 0; k < 6; ++k) c.blocks.push_back({n++, 1});
   for (int k = 0; k < 8; ++k) {
-    blocks.push_back({n, 3});
+    c.blocks.push_back({n, 3});
     n += 3;
   }
   for (int j = 0; j < n; ++j) {
-    for (int t = 0; t < 3; ++t) triplets.emplace_back(static_cast<int>(rng() % coupled_rows), j, normal(rng));
+    const bool fixed = j >= 6 && (j - 6) % 3 == 0;
+    if (fixed) {
+      all.emplace_back(rows++, j, 0.5 + j);
+      continue;
+    }
+    for (int t = 0; t < 3; ++t) all.emplace_back(static_cast<int>(rng() % coupled_rows), j, normal(rng));
   }
-  // The first coordinate of each 3-cone fixed by a row of its own; one 4-cone with two fixed.
-  std::vector<Eigen::Triplet<double>> all;
-  for (const auto& t : triplets) {
-    const bool fixed = t.col() >= 6 && (t.col() - 6) % 3 == 0;
-    if (!fixed) all.push_back(t);
+  if (extras) {
+    // Column 0 on every row; each row also on one of the scalars 1-5, so that M without the dense
+    // column is not singular (then the bordered solve loses accuracy, normal_equations.hpp).
+    for (int i = 0; i < coupled_rows; ++i) {
+      all.emplace_back(i, 0, normal(rng));
+      all.emplace_back(i, 1 + i % 5, normal(rng));
+    }
   }
-  for (int k = 0; k < 8; ++k) all.emplace_back(rows++, 6 + 3 * k, 0.5 + k);
-  blocks.push_back({n, 4});
+  c.blocks.push_back({n, 4});
   for (int j = n + 2; j < n + 4; ++j) all.emplace_back(static_cast<int>(rng() % coupled_rows), j, normal(rng));
   all.emplace_back(rows++, n, -2.0);
   all.emplace_back(rows++, n + 1, 3.0);
   n += 4;
-  Eigen::SparseMatrix<double> A(rows, n);
-  A.setFromTriplets(all.begin(), all.end());
-  NormalEquations normal_equations(A, blocks, std::vector<bool>(static_cast<std::size_t>(n), false),
-                                   rbla::conic::Ordering::Amd, nullptr, 1);
-  ASSERT_EQ(normal_equations.num_fixed_rows(), 10);
-  EXPECT_EQ(NormalEquations(A, blocks, std::vector<bool>(static_cast<std::size_t>(n), false),
-                            rbla::conic::Ordering::Amd, nullptr, 11)
-                .num_fixed_rows(),
-            0)
-      << "fewer fixed rows than asked for stay in M";
+  if (extras) {
+    c.blocks.push_back({n, 1});
+    all.emplace_back(rows++, n++, 4.0);
+  }
+  c.A.resize(rows, n);
+  c.A.setFromTriplets(all.begin(), all.end());  // duplicates (column 0) are summed
+  c.is_dense.assign(static_cast<std::size_t>(n), false);
+  c.is_dense[0] = extras;
+  c.num_fixed = rows - coupled_rows;
+  return c;
+}
 
+/// Factors with random W² blocks; the product, the refined solve and the pair solve must be
+/// those of the explicit M = A W² Aᵀ over every row.
+void expect_explicit_M(rbla::conic::detail::NormalEquations& ne, const FixedRowsCase& c,
+                       std::mt19937& rng) {
+  std::normal_distribution<double> normal;
   Eigen::MatrixXd W2;
-  const std::vector<double> packed = random_W2(blocks, n, rng, W2);
-  ASSERT_TRUE(normal_equations.factor(packed, 1e-12, 10.0, 5).ok);
-  const Eigen::MatrixXd M = Eigen::MatrixXd(A) * W2 * Eigen::MatrixXd(A).transpose();
-  const Eigen::VectorXd v = Eigen::VectorXd::NullaryExpr(rows, [&] { return normal(rng); });
-  Eigen::VectorXd product;
-  normal_equations.multiply(v, product);
-  EXPECT_LT((product - M * v).norm(), 1e-12 * (M * v).norm());
+  const std::vector<double> packed = random_W2(c.blocks, static_cast<int>(c.A.cols()), rng, W2);
+  ASSERT_TRUE(ne.factor(packed, 1e-12, 10.0, 5).ok);
+  const Eigen::MatrixXd M = Eigen::MatrixXd(c.A) * W2 * Eigen::MatrixXd(c.A).transpose();
+  const Eigen::VectorXd v = Eigen::VectorXd::NullaryExpr(c.A.rows(), [&] { return normal(rng); });
   const Eigen::VectorXd rhs = M * v;
+  Eigen::VectorXd product;
+  ne.multiply(v, product);
+  EXPECT_LT((product - rhs).norm(), 1e-12 * rhs.norm());
   Eigen::VectorXd dy;
-  normal_equations.solve(rhs, dy, 10, 1e-11);
+  ne.solve(rhs, dy, 10, 1e-11);
   EXPECT_LT((dy - v).lpNorm<Eigen::Infinity>(), 1e-8 * v.lpNorm<Eigen::Infinity>());
-  Eigen::VectorXd a, b;
-  normal_equations.solve_pair(rhs, 2.0 * rhs, a, b);
-  EXPECT_LT((a - v).lpNorm<Eigen::Infinity>(), 1e-6 * v.lpNorm<Eigen::Infinity>());
-  EXPECT_LT((b - 2.0 * v).lpNorm<Eigen::Infinity>(), 2e-6 * v.lpNorm<Eigen::Infinity>());
+  // The pair solve (unrefined) is two plain solves in one pass.
+  Eigen::VectorXd plain, a, b;
+  ne.solve(rhs, plain, 0, 0.0);
+  ne.solve_pair(rhs, 2.0 * rhs, a, b);
+  EXPECT_LT((a - plain).lpNorm<Eigen::Infinity>(), 1e-12 * plain.lpNorm<Eigen::Infinity>());
+  EXPECT_LT((b - 2.0 * plain).lpNorm<Eigen::Infinity>(), 2e-12 * plain.lpNorm<Eigen::Infinity>());
+  EXPECT_LT((plain - v).lpNorm<Eigen::Infinity>(), 1e-3 * v.lpNorm<Eigen::Infinity>());
+}
+
+}  // namespace
+
+TEST(ConicNormalEquations, FixedRowsAreEliminatedExactly) {
+  // Rows with one nonzero in a column with no other nonzero (a cone coordinate fixed by its own
+  // row, as a capped friction cone's radius) are eliminated before factoring.
+  using namespace rbla::conic::detail;
+  std::mt19937 rng(5);
+  const FixedRowsCase c = fixed_rows_case(rng, false);
+  NormalEquations ne(c.A, c.blocks, c.is_dense, rbla::conic::Ordering::Amd, nullptr, 1);
+  ASSERT_EQ(ne.num_fixed_rows(), 10);
+  EXPECT_EQ(NormalEquations(c.A, c.blocks, c.is_dense, rbla::conic::Ordering::Amd, nullptr, 11).num_fixed_rows(), 0)
+      << "fewer fixed rows than asked for stay in M";
+  expect_explicit_M(ne, c, rng);
+}
+
+TEST(ConicNormalEquations, FixedRowsWithADenseColumnTwoThreadsAndNewValues) {
+  // The same with a dense column kept out of the factor, a block whose only coordinate is
+  // fixed, the reduction and recovery on two threads (a random matrix has no small separator,
+  // so the factor itself is one), and then new values of A in the same pattern.
+  using namespace rbla::conic::detail;
+  std::mt19937 rng(9);
+  FixedRowsCase c = fixed_rows_case(rng, true);
+  ForkJoin fork_join;
+  NormalEquations ne(c.A, c.blocks, c.is_dense, rbla::conic::Ordering::Best, &fork_join, 1);
+  ASSERT_EQ(ne.num_fixed_rows(), 11);
+  ASSERT_EQ(ne.num_dense_columns(), 1);
+  ASSERT_FALSE(ne.is_split());
+  expect_explicit_M(ne, c, rng);
+  std::uniform_real_distribution<double> factor(0.5, 2.0);
+  for (Eigen::Index p = 0; p < c.A.nonZeros(); ++p) c.A.valuePtr()[p] *= factor(rng);
+  ne.set_A_values(c.A);
+  expect_explicit_M(ne, c, rng);
 }
