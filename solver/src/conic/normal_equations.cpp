@@ -94,10 +94,8 @@ void NormalEquations::collect_blocks(const Eigen::SparseMatrix<double>& A,
     }
     blocks_.push_back(std::move(bd));
   }
-  for (std::size_t f = 0; f < fixed_blocks_.size(); ++f) {
-    BlockData& bd = blocks_[static_cast<std::size_t>(fixed_blocks_[f].block)];
-    bd.fixed = static_cast<int>(f);
-    if (fixed_blocks_[f].local.size() == 1) bd.fixed_column = fixed_blocks_[f].local[0];
+  for (const FixedBlock& fb : fixed_blocks_) {
+    if (fb.local.size() == 1) blocks_[static_cast<std::size_t>(fb.block)].fixed_column = fb.local[0];
   }
   local_A_.assign(a_total, 0.0);
   packed_W2_.assign(w2_total, 0.0);

@@ -126,8 +126,7 @@ class NormalEquations {
     std::size_t map_offset = 0;  // into value_map_: r(r+1)/2 positions (column b, rows a ≥ b)
     bool dense = false;
     signed char separator_share = -1;  // SplitCholesky domain whose share gets its SS terms
-    int fixed = -1;                    // into fixed_blocks_, when it has fixed coordinates
-    int fixed_column = -1;             // its one fixed coordinate (block-local), if one
+    int fixed_column = -1;             // its one fixed coordinate (block-local), if it has one
   };
   /// A block's coordinates fixed by rows of their own (see the top of this file).
   struct FixedBlock {
