@@ -37,6 +37,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -157,6 +158,11 @@ class NormalEquations {
   /// t = A_Rᵀ v over the block's rows that are not fixed (q values), and out[R] += A_R g.
   void block_At(const BlockData& bd, const Eigen::VectorXd& v, double* t) const;
   void add_block_A(const BlockData& bd, const double* g, Eigen::VectorXd& out) const;
+  /// The rows that are not fixed, full numbering ↔ M̃'s.
+  void gather_free(const Eigen::VectorXd& full, Eigen::VectorXd& free) const;
+  void scatter_free(const Eigen::VectorXd& free, Eigen::VectorXd& full) const;
+  /// work(begin, end, half) over fixed_blocks_: the second half on fork_join_'s helper, if any.
+  void for_fixed_halves(const std::function<void(std::size_t, std::size_t, int)>& work) const;
   /// u = r_E / a over the block's fixed rows.
   void fixed_rhs(const FixedBlock& fb, const Eigen::VectorXd& full, double* u) const;
   void collect_blocks(const Eigen::SparseMatrix<double>& A, const std::vector<ScalingBlock>& blocks,

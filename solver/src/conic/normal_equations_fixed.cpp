@@ -124,14 +124,39 @@ void NormalEquations::fixed_rhs(const FixedBlock& fb, const Eigen::VectorXd& ful
     u[e] = full[fb.rows[e]] / fixed_a_[static_cast<std::size_t>(fb.a_at[e])];
 }
 
+void NormalEquations::gather_free(const Eigen::VectorXd& full, Eigen::VectorXd& free) const {
+  free.resize(m_);
+  for (std::size_t i = 0; i < reduced_row_.size(); ++i) {
+    if (reduced_row_[i] >= 0) free[reduced_row_[i]] = full[static_cast<Eigen::Index>(i)];
+  }
+}
+
+void NormalEquations::scatter_free(const Eigen::VectorXd& free, Eigen::VectorXd& full) const {
+  full.resize(full_m_);
+  for (std::size_t i = 0; i < reduced_row_.size(); ++i) {
+    if (reduced_row_[i] >= 0) full[static_cast<Eigen::Index>(i)] = free[reduced_row_[i]];
+  }
+}
+
+void NormalEquations::for_fixed_halves(const std::function<void(std::size_t, std::size_t, int)>& work) const {
+  const std::size_t n = fixed_blocks_.size();
+  if (!fork_join_) {
+    work(0, n, 0);
+    return;
+  }
+  const std::function<void()> first = [&] { work(0, n / 2, 0); };
+  const std::function<void()> second = [&] { work(n / 2, n, 1); };
+  fork_join_->run(first, second);
+}
+
 // r̃ = r_K − Σ A_R Gᵀ (r_E / a). With fork_join_ the second half of the fixed blocks adds into
 // a vector of its own (blocks of the two halves share rows), summed after.
 void NormalEquations::reduce(const Eigen::VectorXd& full, Eigen::VectorXd& reduced) const {
-  reduced.resize(m_);
-  for (std::size_t i = 0; i < reduced_row_.size(); ++i) {
-    if (reduced_row_[i] >= 0) reduced[reduced_row_[i]] = full[static_cast<Eigen::Index>(i)];
-  }
-  auto subtract = [&](std::size_t begin, std::size_t end, Eigen::VectorXd& into) {
+  gather_free(full, reduced);
+  Eigen::VectorXd& other = reduced_scratch_[3];
+  if (fork_join_) other.setZero(m_);
+  for_fixed_halves([&](std::size_t begin, std::size_t end, int half) {
+    Eigen::VectorXd& into = half == 0 ? reduced : other;
     std::vector<double> u(static_cast<std::size_t>(max_block_size_)), g(static_cast<std::size_t>(max_block_size_));
     for (std::size_t k = begin; k < end; ++k) {
       const FixedBlock& fb = fixed_blocks_[k];
@@ -146,29 +171,16 @@ void NormalEquations::reduce(const Eigen::VectorXd& full, Eigen::VectorXd& reduc
       }
       add_block_A(bd, g.data(), into);
     }
-  };
-  const std::size_t n = fixed_blocks_.size();
-  if (!fork_join_) {
-    subtract(0, n, reduced);
-    return;
-  }
-  Eigen::VectorXd& other = reduced_scratch_[3];
-  other.setZero(m_);
-  const std::function<void()> first = [&] { subtract(0, n / 2, reduced); };
-  const std::function<void()> second = [&] { subtract(n / 2, n, other); };
-  fork_join_->run(first, second);
-  reduced += other;
+  });
+  if (fork_join_) reduced += other;
 }
 
 // dy_K from the reduced solve; dy_E = ((W²_EE)⁻¹ (r_E / a) − G A_Rᵀ dy_K) / a. Each fixed block
 // writes only its own rows, so the two halves run on two threads without sharing.
 void NormalEquations::expand(const Eigen::VectorXd& full_rhs, const Eigen::VectorXd& reduced,
                              Eigen::VectorXd& full) const {
-  full.resize(full_m_);
-  for (std::size_t i = 0; i < reduced_row_.size(); ++i) {
-    if (reduced_row_[i] >= 0) full[static_cast<Eigen::Index>(i)] = reduced[reduced_row_[i]];
-  }
-  auto recover = [&](std::size_t begin, std::size_t end) {
+  scatter_free(reduced, full);
+  for_fixed_halves([&](std::size_t begin, std::size_t end, int) {
     std::vector<double> u(static_cast<std::size_t>(max_block_size_)), t(static_cast<std::size_t>(max_block_size_));
     for (std::size_t k = begin; k < end; ++k) {
       const FixedBlock& fb = fixed_blocks_[k];
@@ -185,15 +197,7 @@ void NormalEquations::expand(const Eigen::VectorXd& full_rhs, const Eigen::Vecto
         full[fb.rows[a]] = dy / fixed_a_[static_cast<std::size_t>(fb.a_at[a])];
       }
     }
-  };
-  const std::size_t n = fixed_blocks_.size();
-  if (!fork_join_) {
-    recover(0, n);
-    return;
-  }
-  const std::function<void()> first = [&] { recover(0, n / 2); };
-  const std::function<void()> second = [&] { recover(n / 2, n); };
-  fork_join_->run(first, second);
+  });
 }
 
 // M_KK v_K from exact_values_; with t = A_Rᵀ v_K and w = a v_E, a fixed block adds its coupling
@@ -201,10 +205,7 @@ void NormalEquations::expand(const Eigen::VectorXd& full_rhs, const Eigen::Vecto
 void NormalEquations::multiply_full(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
   Eigen::VectorXd& v_free = reduced_scratch_[1];
   Eigen::VectorXd& out_free = reduced_scratch_[2];
-  v_free.resize(m_);
-  for (std::size_t i = 0; i < reduced_row_.size(); ++i) {
-    if (reduced_row_[i] >= 0) v_free[reduced_row_[i]] = v[static_cast<Eigen::Index>(i)];
-  }
+  gather_free(v, v_free);
   multiply_lower(exact_values_, v_free, out_free);
   out.resize(full_m_);
   const std::size_t size = static_cast<std::size_t>(max_block_size_);
@@ -230,7 +231,7 @@ void NormalEquations::multiply_full(const Eigen::VectorXd& v, Eigen::VectorXd& o
       out[fb.rows[a]] = fixed_a_[static_cast<std::size_t>(fb.a_at[a])] * sum;
     }
   }
-  for (std::size_t i = 0; i < reduced_row_.size(); ++i) {
+  for (std::size_t i = 0; i < reduced_row_.size(); ++i) {  // out already holds the fixed rows
     if (reduced_row_[i] >= 0) out[static_cast<Eigen::Index>(i)] = out_free[reduced_row_[i]];
   }
 }
