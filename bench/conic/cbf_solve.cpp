@@ -3,6 +3,9 @@
 //   rbla_conic_cbf_solve problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]
 //                        [--ordering best|amd|metis|default] [--correctors K]
 //                        [--blas-threads N] [--threads 1|2] [--split-min-rows R]
+//                        [--write-solution FILE]
+// --write-solution writes x, y and z, one number per line after a line "x n", "y m", "z n", for
+// a check of the solution by another program (bench/conic/highs_lp.py --check).
 
 #include <cstdio>
 #include <cstdlib>
@@ -13,14 +16,39 @@
 #include "rbla/conic/io.hpp"
 #include "rbla/conic/solver.hpp"
 
+namespace {
+
+void write_vector(std::FILE* file, const char* name, const Eigen::VectorXd& v) {
+  std::fprintf(file, "%s %ld\n", name, static_cast<long>(v.size()));
+  for (Eigen::Index i = 0; i < v.size(); ++i) std::fprintf(file, "%.17g\n", v[i]);
+}
+
+void write_solution(const char* path, const rbla::conic::Solution& solution) {
+  std::FILE* file = std::fopen(path, "w");
+  if (!file) {
+    std::fprintf(stderr, "error: cannot write %s\n", path);
+    std::exit(1);
+  }
+  write_vector(file, "x", solution.x);
+  write_vector(file, "y", solution.y);
+  write_vector(file, "z", solution.z);
+  if (std::fclose(file) != 0) {
+    std::fprintf(stderr, "error: cannot write %s\n", path);
+    std::exit(1);
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N] [--threads 1|2] [--split-min-rows R] [--reg-static D] [--refine-tol T] [--step-fraction F]\n",
+                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N] [--threads 1|2] [--split-min-rows R] [--reg-static D] [--refine-tol T] [--step-fraction F] [--write-solution FILE]\n",
                  argv[0]);
     return 2;
   }
   rbla::conic::Settings settings;
+  const char* solution_path = nullptr;
   for (int k = 2; k < argc; ++k) {
     if (std::strcmp(argv[k], "--verbose") == 0) {
       settings.verbose = true;
@@ -47,6 +75,8 @@ int main(int argc, char** argv) {
       settings.reg_static = std::atof(argv[++k]);
     } else if (std::strcmp(argv[k], "--refine-tol") == 0 && k + 1 < argc) {
       settings.refine_tol_rel = std::atof(argv[++k]);
+    } else if (std::strcmp(argv[k], "--write-solution") == 0 && k + 1 < argc) {
+      solution_path = argv[++k];
     } else if (std::strcmp(argv[k], "--step-fraction") == 0 && k + 1 < argc) {
       settings.step_fraction = std::atof(argv[++k]);
     } else {
@@ -64,6 +94,7 @@ int main(int argc, char** argv) {
         "\"total_seconds\": %.6f}\n",
         rbla::conic::to_string(info.status), info.primal_objective, info.dual_objective,
         info.iterations, info.res_primal, info.res_dual, info.gap_rel, info.total_seconds);
+    if (solution_path) write_solution(solution_path, solution);
     return 0;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "error: %s\n", error.what());
