@@ -508,6 +508,89 @@ def scene_facade(args):
 
 
 # --------------------------------------------------------------------------------------------
+# Town house: English bond, storeys of rectangular windows with flat lintels, a door
+# --------------------------------------------------------------------------------------------
+# A second façade family for the scale benchmark, built unlike the facade and church scenes
+# (docs/benchmark/scale.md): courses alternate stretchers (one block length) and headers (half a
+# block length, a quarter-length closer at each end), the openings are rectangular with one
+# lintel block each, and their jambs cut the courses into closers. Lengths in quarter blocks q.
+
+TOWNHOUSE_BAY_Q = 32            # bay width: 8 stretchers
+TOWNHOUSE_STOREY_COURSES = 14   # 4 below the sill, 7 of window, the lintel, 2 above
+TOWNHOUSE_WINDOW = (10, 22, 4, 7)   # window x0, x1 (q from the bay's left edge), sill course, courses
+TOWNHOUSE_DOOR = (8, 24, 0, 9)      # the door of the middle bay on the ground floor, same units
+TOWNHOUSE_BEARING_Q = 2         # lintel bearing on each side of the opening
+TOWNHOUSE_PARAPET = 2           # courses above the top storey
+
+
+def english_bond_breakpoints(n_stretchers, bl, header_course):
+    """Joints of an English-bond course of length n_stretchers * bl: stretchers, or headers of
+    half length between two quarter-length closers at the ends (joints at odd multiples of bl/4)."""
+    L = n_stretchers * bl
+    if not header_course:
+        return [k * bl for k in range(n_stretchers + 1)]
+    q = bl / 4.0
+    return [0.0] + [q + 2.0 * q * k for k in range(2 * n_stretchers)] + [L]
+
+
+def townhouse_openings(bays, storeys, q):
+    """(x0, x1, first course, courses) of every opening: a window per bay and storey, the door
+    in place of the middle bay's ground-floor window."""
+    openings = []
+    for st in range(storeys):
+        for b in range(bays):
+            x0, x1, sill, n = TOWNHOUSE_DOOR if (st == 0 and b == bays // 2) else TOWNHOUSE_WINDOW
+            left = b * TOWNHOUSE_BAY_Q
+            openings.append(((left + x0) * q, (left + x1) * q,
+                             st * TOWNHOUSE_STOREY_COURSES + sill, n))
+    return openings
+
+
+def townhouse_course(c, br, openings, q):
+    """Segments (x0, x1, id or None) of course c: holes where an opening passes, one lintel block
+    over each opening whose top is this course."""
+    holes = [(x0, x1) for x0, x1, first, n in openings if first <= c < first + n]
+    lintels = [(x0 - TOWNHOUSE_BEARING_Q * q, x1 + TOWNHOUSE_BEARING_Q * q, k)
+               for k, (x0, x1, first, n) in enumerate(openings) if c == first + n]
+    segs = course_segments(br, holes=holes, merged=[(a, b) for a, b, _ in lintels])
+    named = []
+    for a, b in segs:
+        lintel = [k for la, lb, k in lintels if abs(a - la) <= SNAP and abs(b - lb) <= SNAP]
+        named.append((a, b, "lintel_%03d" % lintel[0] if lintel else None))
+    return named
+
+
+def scene_townhouse(args):
+    bays, storeys = args.bays, args.storeys
+    if bays < 1 or storeys < 1:
+        raise SystemExit("townhouse: --bays and --storeys must be at least 1")
+    bl, bt, hb = args.block_length, args.block_thickness, args.block_height
+    q = bl / 4.0
+    L = bays * TOWNHOUSE_BAY_Q * q
+    n_stretchers = bays * TOWNHOUSE_BAY_Q // 4
+    n_courses = storeys * TOWNHOUSE_STOREY_COURSES + TOWNHOUSE_PARAPET
+    m, t = args.base_margin, args.base_thickness
+    model = model_skeleton("", args)
+    blocks = model["blocks"]
+    settling = args.load == "settlement"
+    _add_base(blocks, L, m, t, bt, args.settling_fraction if settling else None, args.support_gap,
+              "townhouse")
+    model["analysis"] = {"type": "settlement"} if settling else seismic_analysis([1, 0, 0])
+    openings = townhouse_openings(bays, storeys, q)
+    courses = []
+    for c in range(n_courses):
+        br = english_bond_breakpoints(n_stretchers, bl, c % 2 == 1)
+        courses.append((c * hb, townhouse_course(c, br, openings, q)))
+    _wall_blocks(blocks, courses, bt, hb, prefix="t")
+    model["title"] = ("town house: English bond, %d bays x %d storeys (%.1f x %.1f m), %d windows "
+                      "and a door with flat lintels, %d blocks; %s"
+                      % (bays, storeys, L, n_courses * hb, len(openings) - 1, len(blocks),
+                         "settlement of the right %g %% of the base" % (100 * args.settling_fraction)
+                         if settling else "seismic +x"))
+    return model
+
+
+# --------------------------------------------------------------------------------------------
 # Church façade: running bond with arched openings and a rose window
 # --------------------------------------------------------------------------------------------
 
@@ -995,6 +1078,7 @@ SCENES = {
     "wall-settlement": scene_wall_settlement,
     "facade": scene_facade,
     "church": scene_church,
+    "townhouse": scene_townhouse,
     "dome": scene_dome,
     "vault": scene_vault,
 }
@@ -1121,6 +1205,22 @@ def build_parser():
     s.add_argument("--joint-clearance", type=float, default=0.35,
                    help="running-bond joints closer than this many block lengths to an opening's "
                         "edge are dropped, so no sliver is cut")
+
+    s = sub.add_parser("townhouse", parents=[common, out, base, imperf], formatter_class=D,
+                       help="town-house facade in English bond with storeys of windows, flat "
+                            "lintels and a door (5 x 3 bays x storeys: ~2000 blocks)")
+    s.add_argument("--bays", type=int, default=5, help="window bays along the facade (3.5 m each "
+                   "at the default block length)")
+    s.add_argument("--storeys", type=int, default=3, help="storeys of %d courses"
+                   % TOWNHOUSE_STOREY_COURSES)
+    s.add_argument("--load", choices=["settlement", "seismic-x"], default="seismic-x",
+                   help="settlement of the right part of the base, or seismic along +x (in plane)")
+    s.add_argument("--settling-fraction", type=float, default=0.5,
+                   help="fraction of the wall length (right end) over the moving support")
+    s.add_argument("--support-gap", type=float, default=0.01, help=gap_help)
+    s.add_argument("--block-length", type=float, default=0.44, help="stretcher length along x, m")
+    s.add_argument("--block-height", type=float, default=0.25, help="course height, along z, m")
+    s.add_argument("--block-thickness", type=float, default=0.45, help="along y, m")
 
     s = sub.add_parser("dome", parents=[common, out, base, imperf], formatter_class=D,
                        help="hemispherical dome of staggered voussoirs with an oculus, on a fixed "

@@ -49,12 +49,30 @@ def facade_joints(nx, ny):
     return heads + nx + (ny - 1) * 2 * nx
 
 
+def townhouse_one_bay_joints():
+    # One bay, one storey: 8 stretchers wide (32 quarter blocks q), 16 courses; the door cuts
+    # [8q, 24q] out of courses 0-8, its lintel spans [6q, 26q] in course 9. Stretcher courses have
+    # joints every 4q, header courses at odd multiples of q (q closers at the ends).
+    heads = (5 * 2        # stretcher courses 0, 2, .., 8: two blocks each side of the door
+             + 4 * 8      # header courses 1, 3, 5, 7: five each side
+             + 8          # course 9: four pieces, the lintel, four pieces
+             + 3 * 7      # stretcher courses 10, 12, 14
+             + 3 * 16)    # header courses 11, 13, 15
+    beds = (4             # course 0 on the base
+            + 8 * 12      # courses 0-8, pairwise: each stretcher beside the door meets 3 headers
+            + 12          # course 8 under course 9 (the lintel's ends included)
+            + 16          # course 9 under the full course 10 (the lintel under four stretchers)
+            + 5 * 24)     # courses 10-15: each stretcher meets 3 headers
+    return heads + beds
+
+
 SMALL = [
     ("facade", ["--nx", "12", "--ny", "10"], facade_joints(12, 10)),
     # The same bond on a base split under the middle of a bottom block: one more bed joint.
     ("wall-settlement", ["--courses", "10", "--blocks", "12"], facade_joints(12, 10) + 1),
     ("dome", ["--rings", "6", "--segments", "32"], dome_joints(6, 32)),
     ("vault", ["--nu", "8", "--nv", "10"], vault_joints(8, 10)),
+    ("townhouse", ["--bays", "1", "--storeys", "1"], townhouse_one_bay_joints()),
 ]
 LARGE = [
     ("dome", ["--rings", "16", "--segments", "48"], dome_joints(16, 48)),
