@@ -130,9 +130,13 @@ TEST(NonAssociative, EveryStepSatisfiesCoulomb) {
     const bool settlement = a.base_reaction.has_value();
     const double reference = settlement ? *a.base_reaction : *a.load_multiplier;
     ASSERT_GE(n.non_associative.size(), 1u);
+    // The steps are solved to a relative gap and feasibility of 1e-6 (non_associative.cpp,
+    // kStepGap), so a step's value is that close to its problem's: the settling block's first step
+    // came 2.7e-7 below the associative reaction on an AMD EPYC.
+    const double step_accuracy = 1e-6;
     for (const auto& step : n.non_associative) {
-      if (settlement) EXPECT_GE(step.value, reference * (1.0 - 1e-7)) << "step " << step.iteration;
-      else EXPECT_LE(step.value, reference * (1.0 + 1e-7)) << "step " << step.iteration;
+      if (settlement) EXPECT_GE(step.value, reference * (1.0 - step_accuracy)) << "step " << step.iteration;
+      else EXPECT_LE(step.value, reference * (1.0 + step_accuracy)) << "step " << step.iteration;
     }
     double weight = 0.0;
     for (const auto& b : rbla::io::load_model_text(model.dump()).model.blocks) {

@@ -222,12 +222,14 @@ void expect_explicit_M(rbla::conic::detail::NormalEquations& ne, const FixedRows
   Eigen::VectorXd dy;
   ne.solve(rhs, dy, 10, 1e-11);
   EXPECT_LT((dy - v).lpNorm<Eigen::Infinity>(), 1e-8 * v.lpNorm<Eigen::Infinity>());
-  // The pair solve (unrefined) is two plain solves in one pass.
+  // The pair solve (unrefined) is two plain solves in one pass. It sums in another order (two
+  // columns through the factor's dense kernels), and M, regularised by only 1e-12, amplifies the
+  // rounding: the two agreed to 5.5e-12 relative on an AMD EPYC. A wrong pairing is O(1) off.
   Eigen::VectorXd plain, a, b;
   ne.solve(rhs, plain, 0, 0.0);
   ne.solve_pair(rhs, 2.0 * rhs, a, b);
-  EXPECT_LT((a - plain).lpNorm<Eigen::Infinity>(), 1e-12 * plain.lpNorm<Eigen::Infinity>());
-  EXPECT_LT((b - 2.0 * plain).lpNorm<Eigen::Infinity>(), 2e-12 * plain.lpNorm<Eigen::Infinity>());
+  EXPECT_LT((a - plain).lpNorm<Eigen::Infinity>(), 1e-10 * plain.lpNorm<Eigen::Infinity>());
+  EXPECT_LT((b - 2.0 * plain).lpNorm<Eigen::Infinity>(), 2e-10 * plain.lpNorm<Eigen::Infinity>());
   EXPECT_LT((plain - v).lpNorm<Eigen::Infinity>(), 1e-3 * v.lpNorm<Eigen::Infinity>());
 }
 
