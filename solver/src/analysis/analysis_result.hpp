@@ -64,6 +64,9 @@ struct Mechanism {
   std::vector<BlockMotion> blocks;          ///< one per model block (supports at rest, or settling)
   std::vector<InterfaceResult> interfaces;  ///< one per model interface
   std::vector<int> cracked_interfaces;      ///< indices into model.interfaces
+  /// Blocks with no load whose motion is arbitrary and larger than any loaded block's
+  /// (analysis/unloaded_blocks.hpp); empty in nearly every model.
+  std::vector<int> arbitrary_blocks;
 };
 
 /// Virtual work of the mechanism (kN m, in the normalised velocities). Static-kinematic check:

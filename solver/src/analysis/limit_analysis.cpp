@@ -267,6 +267,21 @@ AnalysisResult empty_result(const model::AnalysisRequest& request) {
   return result;
 }
 
+/// Blocks with no load that keep an arbitrary motion larger than any loaded block's
+/// (analysis/unloaded_blocks.hpp): they set the mechanism's scale, so the picture and the count of
+/// moving blocks may mislead.
+void warn_arbitrary_blocks(const model::Model& m, AnalysisResult& result) {
+  const std::vector<int>& blocks = result.mechanism.arbitrary_blocks;
+  if (blocks.empty()) return;
+  result.warnings.push_back(
+      {"unloaded_block_motion",
+       count(blocks.size(), "block", "blocks") + " with no load (" + quoted_block_ids(m, blocks, 3) +
+           ") move more than any loaded block in the mechanism, by an arbitrary amount: moving them by any "
+           "amount gives a mechanism of the same value, and no smaller motion compatible with their contacts "
+           "was found; the mechanism's scale and its count of moving blocks are set by them",
+       "/blocks/" + std::to_string(blocks.front())});
+}
+
 /// The value of a collapse, in the field its analysis reports it in.
 void record_value(const model::Model& m, const Formulation& formulation, double value, AnalysisResult& result) {
   if (formulation.settlement) {
@@ -392,6 +407,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
       result.sensitivities = collapse_sensitivities(m, result);
     }
   }
+  warn_arbitrary_blocks(m, result);
   write_verdict_text(m, result);
   return result;
 }

@@ -26,18 +26,35 @@ std::vector<BlockMotion> block_velocities(const model::Model& m, const Formulati
   return motions;
 }
 
+void set_block_multipliers(const Formulation& f, int block, const BlockMotion& motion, Eigen::VectorXd& y) {
+  const int row = f.block_row[block];
+  const double scale = f.block_scale[block] / f.force_scale;  // 1 / block_velocities' unscale
+  if (f.options.planar) {
+    y[row] = -scale * motion.translation.dot(f.options.frame.e1);
+    y[row + 1] = -scale * motion.translation.dot(f.options.frame.e2);
+    y[row + 2] = -scale * f.length_scale * motion.rotation.dot(f.options.frame.normal);
+  } else {
+    y.segment<3>(row) = -scale * motion.translation;
+    y.segment<3>(row + 3) = -scale * f.length_scale * motion.rotation;
+  }
+}
+
 Vec3 point_velocity(const model::Model& m, const std::vector<BlockMotion>& motions, int block, const Vec3& p) {
   const BlockMotion& motion = motions[block];
   return motion.translation + motion.rotation.cross(p - m.blocks[block].centroid);
 }
 
+double block_speed(const model::Block& block, const BlockMotion& motion) {
+  double largest = 0.0;
+  for (const Vec3& v : block.vertices) {
+    largest = std::max(largest, (motion.translation + motion.rotation.cross(v - block.centroid)).norm());
+  }
+  return largest;
+}
+
 std::vector<double> block_speeds(const model::Model& m, const std::vector<BlockMotion>& motions) {
   std::vector<double> speed(m.blocks.size(), 0.0);
-  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
-    for (const Vec3& v : m.blocks[b].vertices) {
-      speed[b] = std::max(speed[b], point_velocity(m, motions, static_cast<int>(b), v).norm());
-    }
-  }
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) speed[b] = block_speed(m.blocks[b], motions[b]);
   return speed;
 }
 

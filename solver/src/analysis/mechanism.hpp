@@ -38,8 +38,16 @@ inline constexpr double kCrackFraction = 0.02;
 std::vector<BlockMotion> block_velocities(const model::Model& model, const Formulation& formulation,
                                           const Eigen::VectorXd& y);
 
+/// The inverse of block_velocities for one free block: writes the multipliers of its rows that
+/// give it `motion` (in a planar formulation only the in-plane part of the motion is kept).
+void set_block_multipliers(const Formulation& formulation, int block, const BlockMotion& motion,
+                           Eigen::VectorXd& y);
+
 /// Velocity of a point p of block i: u_i + theta_i x (p - g_i).
 Vec3 point_velocity(const model::Model& model, const std::vector<BlockMotion>& motions, int block, const Vec3& p);
+
+/// Largest vertex speed of one block under `motion` (m per unit of the motion).
+double block_speed(const model::Block& block, const BlockMotion& motion);
 
 /// Largest vertex speed of every block (m per unit of the motions).
 std::vector<double> block_speeds(const model::Model& model, const std::vector<BlockMotion>& motions);

@@ -1,6 +1,7 @@
 #include "analysis/non_associative.hpp"
 
 #include "analysis/mechanism.hpp"
+#include "analysis/unloaded_blocks.hpp"
 
 #include <Eigen/QR>
 
@@ -335,9 +336,11 @@ class ShiftScheme {
     const double slack = request_.non_associative_tolerance * scale(v_state);
     const bool confirmed = f_.settlement ? v_capped >= v_state - slack : v_capped <= v_state + slack;
     result_.non_associative_gap = (f_.settlement ? v_state - v_capped : v_capped - v_state) / scale(v_state);
+    Eigen::VectorXd capped_y = capped.y;
+    capped_arbitrary_blocks_ = settle_unloaded_blocks(m_, cylinder_, cylinder_.problem.c, capped_y).unsettled;
     // The block rows come first in both formulations (radius rows follow them in the capped one).
     capped_mechanism_ = Eigen::VectorXd::Zero(f_.problem.A.rows());
-    capped_mechanism_.head(cylinder_.first_radius_row) = capped.y.head(cylinder_.first_radius_row);
+    capped_mechanism_.head(cylinder_.first_radius_row) = capped_y.head(cylinder_.first_radius_row);
     if (confirmed) mechanism_y = capped_mechanism_;
     return confirmed;
   }
@@ -369,11 +372,15 @@ class ShiftScheme {
     // problem, so they are complementary.
     conic::Solution state = c.state;
     state.y = c.mechanism_y;
+    const std::vector<int> arbitrary =
+        c.confirmed ? capped_arbitrary_blocks_
+                    : settle_unloaded_blocks(m_, f_, shifted_cost(m_, f_, cost_, c.shift, 1.0), state.y).unsettled;
     result_.solver_info = c.state.info;
     result_.interior_point_history = c.state.info.history;
     result_.mechanism = Mechanism{};
     result_.mechanism_seconds = 0.0;
     read_solution(m_, f_, state, false, result_);
+    result_.mechanism.arbitrary_blocks = arbitrary;
   }
 
   /// The state to report: the forces of `state` (a selection on `step`'s optimal face, or the
@@ -404,6 +411,7 @@ class ShiftScheme {
   Formulation cylinder_;
   std::unique_ptr<conic::ConicSolver> cylinder_solver_;
   Eigen::VectorXd capped_mechanism_;  ///< of the last test, in the associative formulation's rows
+  std::vector<int> capped_arbitrary_blocks_;  ///< of the last test (settle_unloaded_blocks)
 };
 
 }  // namespace

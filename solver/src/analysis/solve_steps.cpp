@@ -1,6 +1,7 @@
 #include "analysis/solve_steps.hpp"
 
 #include "analysis/mechanism.hpp"
+#include "analysis/unloaded_blocks.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -90,7 +91,10 @@ void read_solution(const model::Model& m, const Formulation& f, const conic::Sol
                    AnalysisResult& result) {
   const auto start = Clock::now();
   const std::vector<Vec3> forces = f.point_forces(solution.x);
-  result.mechanism.blocks = block_velocities(m, f, solution.y);
+  // A non-associative state's mechanism comes settled from its own problem (non_associative.cpp).
+  Eigen::VectorXd y = solution.y;
+  if (associative) result.mechanism.arbitrary_blocks = settle_unloaded_blocks(m, f, f.problem.c, y).unsettled;
+  result.mechanism.blocks = block_velocities(m, f, y);
   result.mechanism.normalisation = f.settlement ? Normalisation::UnitSettlement : Normalisation::MaxTranslation;
   // One unit of the user's length: displacements read in the user's units come out as 1.
   normalise(m, f, result.mechanism.normalisation, m.units.length_to_m, result.mechanism.blocks);

@@ -41,9 +41,11 @@ double multiplier_value(const Formulation& f, const Eigen::VectorXd& x);
 /// Normal force (kN, compression positive) at every formulation point.
 std::vector<double> normal_forces(const model::Model& m, const Formulation& f, const std::vector<Vec3>& forces);
 
-/// Fills the mechanism, work balance and accuracy of a solved problem. Non-associative: sliding
-/// points dissipate mu N |slip| (associative sliding dissipates nothing: its dilatancy work
-/// cancels the friction work).
+/// Fills the mechanism, work balance and accuracy of a solved problem. Associative: the motion of
+/// blocks with no load is settled first (unloaded_blocks.hpp); a non-associative state's
+/// mechanism comes settled from its own problem. Non-associative: sliding points dissipate
+/// mu N |slip| (associative sliding dissipates nothing: its dilatancy work cancels the friction
+/// work).
 void read_solution(const model::Model& m, const Formulation& f, const conic::Solution& solution, bool associative,
                    AnalysisResult& result);
 
