@@ -273,12 +273,14 @@ AnalysisResult empty_result(const model::AnalysisRequest& request) {
 void warn_arbitrary_blocks(const model::Model& m, AnalysisResult& result) {
   const std::vector<int>& blocks = result.mechanism.arbitrary_blocks;
   if (blocks.empty()) return;
+  const bool one = blocks.size() == 1;
   result.warnings.push_back(
       {"unloaded_block_motion",
-       count(blocks.size(), "block", "blocks") + " with no load (" + quoted_block_ids(m, blocks, 3) +
-           ") move more than any loaded block in the mechanism, by an arbitrary amount: moving them by any "
-           "amount gives a mechanism of the same value, and no smaller motion compatible with their contacts "
-           "was found; the mechanism's scale and its count of moving blocks are set by them",
+       count(blocks.size(), "block", "blocks") + " with no load (" + quoted_block_ids(m, blocks, 3) + ") " +
+           (one ? "moves" : "move") +
+           " more than any loaded block in the mechanism, by an arbitrary amount: any amount of that motion "
+           "gives a mechanism of the same value, and no smaller motion compatible with the contacts was "
+           "found; the mechanism's scale and its count of moving blocks are set by " + (one ? "it" : "them"),
        "/blocks/" + std::to_string(blocks.front())});
 }
 
