@@ -59,7 +59,8 @@ TEST(UnloadedBlocks, RideWithTheMechanismOrStayAtRest) {
       EXPECT_FALSE(loose.moving);
       // Only the base joint under C0 cracks.
       ASSERT_EQ(r.mechanism.cracked_interfaces.size(), 1u) << r.verdict_text;
-      const auto& cracked = rbla::io::load_model_text(model.dump()).model.interfaces[r.mechanism.cracked_interfaces[0]];
+      const auto loaded = rbla::io::load_model_text(model.dump());
+      const auto& cracked = loaded.model.interfaces[r.mechanism.cracked_interfaces[0]];
       EXPECT_EQ(cracked.block_a + cracked.block_b, 1) << "the base (0) and C0 (1)";
       EXPECT_LT(r.work.relative_error, 1e-6);
       for (const auto& w : r.warnings) EXPECT_NE(w.code, "unloaded_block_motion") << w.message;
