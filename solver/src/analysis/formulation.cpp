@@ -395,12 +395,7 @@ MultiplierCopies multiplier_copies(const model::Model& m, const Formulation& f) 
   MultiplierCopies copies;
   copies.variable.assign(m.blocks.size(), f.multiplier_variable);
   if (f.settlement || num_live_loaded_blocks(m) <= 1) return copies;
-  std::vector<std::vector<int>> neighbours(m.blocks.size());
-  for (const auto& contact : m.interfaces) {
-    if (m.blocks[contact.block_a].is_support() || m.blocks[contact.block_b].is_support()) continue;
-    neighbours[contact.block_a].push_back(contact.block_b);
-    neighbours[contact.block_b].push_back(contact.block_a);
-  }
+  const std::vector<std::vector<int>> neighbours = m.neighbours(/*through_supports=*/false);
   std::vector<bool> seen(m.blocks.size(), false);
   int root_variable = -1;
   for (std::size_t start = 0; start < m.blocks.size(); ++start) {

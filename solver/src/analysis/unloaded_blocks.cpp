@@ -96,15 +96,6 @@ std::vector<BlockMotion> candidate_motions(const model::Model& m, const std::vec
   return candidates;
 }
 
-std::vector<std::vector<int>> neighbours_of(const model::Model& m) {
-  std::vector<std::vector<int>> neighbours(m.blocks.size());
-  for (const model::ContactInterface& c : m.interfaces) {
-    neighbours[c.block_a].push_back(c.block_b);
-    neighbours[c.block_b].push_back(c.block_a);
-  }
-  return neighbours;
-}
-
 /// The unloaded blocks in breadth-first order from the loaded ones, so a block's loaded or already
 /// settled neighbours come before it; groups joined to no loaded block last.
 std::vector<int> settling_order(const model::Model& m, const std::vector<std::vector<int>>& neighbours,
@@ -165,7 +156,7 @@ UnloadedBlocks settle_unloaded_blocks(const model::Model& m, const Formulation& 
   const std::vector<int> unloaded = unloaded_blocks(m, f);
   if (unloaded.empty()) return result;
   const DualCones dual(f.problem, cost);
-  const std::vector<std::vector<int>> neighbours = neighbours_of(m);
+  const std::vector<std::vector<int>> neighbours = m.neighbours();
   std::vector<BlockMotion> motions = block_velocities(m, f, y);
   double loaded_multiplier = 0.0, loaded_speed = 0.0;
   loaded_scales(m, f, unloaded, y, motions, loaded_multiplier, loaded_speed);

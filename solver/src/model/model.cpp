@@ -91,6 +91,16 @@ std::pair<Vec3, Vec3> Model::horizontal_axes() const {
   return {x, up.cross(x)};
 }
 
+std::vector<std::vector<int>> Model::neighbours(bool through_supports) const {
+  std::vector<std::vector<int>> out(blocks.size());
+  for (const ContactInterface& contact : interfaces) {
+    if (!through_supports && (blocks[contact.block_a].is_support() || blocks[contact.block_b].is_support())) continue;
+    out[contact.block_a].push_back(contact.block_b);
+    out[contact.block_b].push_back(contact.block_a);
+  }
+  return out;
+}
+
 namespace {
 
 bool named(const std::string& id, const std::string& label, const std::string& name) {

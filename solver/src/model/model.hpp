@@ -236,6 +236,10 @@ struct Model {
   /// is along x) projected on the plane normal to gravity, and up cross that, so that angles
   /// turn counter-clockwise seen from above. With gravity along -z: +x and +y.
   std::pair<Vec3, Vec3> horizontal_axes() const;
+  /// For each block, the blocks it shares an interface with (once per interface, in interface
+  /// order). Without `through_supports`, interfaces that touch a support are left out: the
+  /// contact graph of the free blocks alone.
+  std::vector<std::vector<int>> neighbours(bool through_supports = true) const;
   /// The blocks (ascending indices) whose id or label is one of `names`. Names that pick nothing
   /// are appended to `unmatched`.
   std::vector<int> blocks_named(const std::vector<std::string>& names, std::vector<std::string>& unmatched) const;
