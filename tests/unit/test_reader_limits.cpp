@@ -71,7 +71,7 @@ TEST(Printable, LongTextIsCutAtACharacterWithItsLength) {
 
 TEST(ReaderLimits, DefaultsAcceptAModelAndEachLimitStopsAtItsPlace) {
   json m = two_boxes();
-  m["interfaces"] = {interface_between("base", "B1", kSquare)};
+  m["interfaces"] = json::array({interface_between("base", "B1", kSquare)});  // {x} alone is x under clang
   const std::string text = m.dump();
   EXPECT_TRUE(model_issues(text).empty()) << describe_issues(model_issues(text));
 

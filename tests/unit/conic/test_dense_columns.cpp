@@ -124,7 +124,10 @@ TEST(ConicNormalEquations, ProductEqualsTheExplicitNormalMatrix) {
   n += 4;
   std::vector<Eigen::Triplet<double>> triplets;
   for (int j = 0; j < n; ++j) {
-    for (int t = 0; t < 3; ++t) triplets.emplace_back(static_cast<int>(rng() % rows), j, normal(rng));
+    for (int t = 0; t < 3; ++t) {
+      const int row = static_cast<int>(rng() % rows);  // drawn first on every compiler
+      triplets.emplace_back(row, j, normal(rng));
+    }
   }
   for (int i = 0; i < rows; ++i) triplets.emplace_back(i, 0, normal(rng));  // column 0 is dense
   Eigen::SparseMatrix<double> A(rows, n);
@@ -172,24 +175,34 @@ FixedRowsCase fixed_rows_case(std::mt19937& rng, bool extras) {
     c.blocks.push_back({n, 3});
     n += 3;
   }
+  // Each free column's first entry goes to the next coupled row in turn, so that every coupled
+  // row is reached (a row with no entry would make M singular but for the regularisation); its
+  // other two go to random rows. The draws are sequenced: the order in which function arguments
+  // are evaluated is unspecified (GCC and clang differ), and with it the case.
+  int next_row = 0;
+  auto random_entry = [&](int row, int column) {
+    const double value = normal(rng);
+    all.emplace_back(row, column, value);
+  };
   for (int j = 0; j < n; ++j) {
     const bool fixed = j >= 6 && (j - 6) % 3 == 0;
     if (fixed) {
       all.emplace_back(rows++, j, 0.5 + j);
       continue;
     }
-    for (int t = 0; t < 3; ++t) all.emplace_back(static_cast<int>(rng() % coupled_rows), j, normal(rng));
+    random_entry(next_row++ % coupled_rows, j);
+    for (int t = 0; t < 2; ++t) random_entry(static_cast<int>(rng() % coupled_rows), j);
   }
   if (extras) {
     // Column 0 on every row; each row also on one of the scalars 1-5, so that M without the dense
     // column is not singular (then the bordered solve loses accuracy, normal_equations.hpp).
     for (int i = 0; i < coupled_rows; ++i) {
-      all.emplace_back(i, 0, normal(rng));
-      all.emplace_back(i, 1 + i % 5, normal(rng));
+      random_entry(i, 0);
+      random_entry(i, 1 + i % 5);
     }
   }
   c.blocks.push_back({n, 4});
-  for (int j = n + 2; j < n + 4; ++j) all.emplace_back(static_cast<int>(rng() % coupled_rows), j, normal(rng));
+  for (int j = n + 2; j < n + 4; ++j) random_entry(static_cast<int>(rng() % coupled_rows), j);
   all.emplace_back(rows++, n, -2.0);
   all.emplace_back(rows++, n + 1, 3.0);
   n += 4;
