@@ -7,9 +7,13 @@
 #   tools/fuzz.sh --smoke [HARNESS...]          CI: 35 s per harness, stops at the first finding
 #   tools/fuzz.sh --seconds N [HARNESS...]      a long run of N s per harness: one forked worker
 #                                               that carries on past findings
+#   --tree DIR (after the mode): fuzz with the harnesses already built in DIR instead of
+#   building build-fuzz/; tools/sanitize.sh builds them in build-asan-ci/ with edge counters
+#   only, which is what the CI smoke run uses.
 # Without HARNESS, all three, one after the other. Exits non-zero when anything was found. New
-# inputs go to build-fuzz/corpus-HARNESS (the committed tests/fuzz/corpus* are only read);
-# findings go to build-fuzz/artifacts/HARNESS-*. See docs/fuzzing.md.
+# inputs go to TREE/corpus-HARNESS (the committed tests/fuzz/corpus* are only read); findings go
+# to TREE/artifacts/HARNESS-*, TREE being build-fuzz unless --tree says otherwise. See
+# docs/fuzzing.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=()
@@ -19,20 +23,31 @@ case "${1:-}" in
              # -fork=1: one worker process, restarted after a crash, timeout or OOM, so an hour's
              # run collects every finding instead of stopping at the first.
              mode=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1) ;;
-  *) echo "usage: tools/fuzz.sh --smoke | --seconds N  [model] [analysis] [conic]" >&2; exit 2 ;;
+  *) echo "usage: tools/fuzz.sh --smoke | --seconds N  [--tree DIR] [model] [analysis] [conic]" >&2; exit 2 ;;
 esac
+tree=build-fuzz
+prebuilt=0
+if [ "${1:-}" = "--tree" ]; then
+  tree="${2:?--tree needs a build folder}"; prebuilt=1; shift 2
+fi
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=(model analysis conic)
 for h in "${harnesses[@]}"; do
   case "$h" in model|analysis|conic) ;; *) echo "fuzz: unknown harness '$h'" >&2; exit 2 ;; esac
 done
-# RelWithDebInfo: optimised enough to fuzz fast, with line numbers in sanitizer reports.
-cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DRBLA_FUZZ=ON >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target "${harnesses[@]/#/fuzz_}"
-mkdir -p build-fuzz/artifacts
+# -O2 to fuzz fast; line tables only (not full -g): line numbers in sanitizer reports without
+# the build cost of full debug information.
+if [ "$prebuilt" -eq 0 ]; then
+  cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DRBLA_FUZZ=ON "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG" >/dev/null
+  cmake --build build-fuzz -j"$(nproc)" --target "${harnesses[@]/#/fuzz_}"
+fi
+for h in "${harnesses[@]}"; do
+  [ -x "$tree/tests/fuzz/fuzz_$h" ] || { echo "fuzz: no harness $tree/tests/fuzz/fuzz_$h (configure with -DRBLA_FUZZ=ON)" >&2; exit 2; }
+done
+mkdir -p "$tree/artifacts"
 # Findings are crash-, timeout-, oom- and leak- files; slow-unit- files are only a note.
-findings() { find build-fuzz/artifacts -type f \( -name '*crash-*' -o -name '*timeout-*' -o -name '*oom-*' -o -name '*leak-*' \) | wc -l; }
+findings() { find "$tree/artifacts" -type f \( -name '*crash-*' -o -name '*timeout-*' -o -name '*oom-*' -o -name '*leak-*' \) | wc -l; }
 before=$(findings)
 # -max_len: the bundled samples are 1-45 kB; 64 kB leaves room to grow them without spending
 #   most of the time on huge inputs. -timeout: the 34 kB wall samples load in 0.6 s under ASan
@@ -46,11 +61,11 @@ for h in "${harnesses[@]}"; do
     analysis) inputs=(tests/fuzz/corpus_analysis tests/fuzz/regressions_analysis); dict=tests/fuzz/model.dict ;;
     conic) inputs=(tests/fuzz/corpus_conic tests/fuzz/regressions_conic); dict=tests/fuzz/cbf.dict ;;
   esac
-  mkdir -p "build-fuzz/corpus-$h"
+  mkdir -p "$tree/corpus-$h"
   echo "fuzz: $h for $seconds s" >&2
-  "build-fuzz/tests/fuzz/fuzz_$h" "build-fuzz/corpus-$h" "${inputs[@]}" \
+  "$tree/tests/fuzz/fuzz_$h" "$tree/corpus-$h" "${inputs[@]}" \
     -dict="$dict" -max_len=65536 -timeout=30 -rss_limit_mb=1024 \
-    -max_total_time="$seconds" -artifact_prefix="build-fuzz/artifacts/$h-" -print_final_stats=1 \
+    -max_total_time="$seconds" -artifact_prefix="$tree/artifacts/$h-" -print_final_stats=1 \
     "${mode[@]}" || status=$?
   # Stop at the first harness with a finding in a smoke run; a long run carries on.
   if [ ${#mode[@]} -eq 0 ] && [ "$status" -ne 0 ]; then break; fi
@@ -58,7 +73,7 @@ done
 # libFuzzer's exit status misses what fork mode was told to ignore: count the files too.
 after=$(findings)
 if [ "$status" -ne 0 ] || [ "$after" -gt "$before" ]; then
-  echo "fuzz: FINDINGS (exit $status, $((after - before)) new files in build-fuzz/artifacts/)" >&2
+  echo "fuzz: FINDINGS (exit $status, $((after - before)) new files in $tree/artifacts/)" >&2
   exit 1
 fi
 echo "fuzz: no findings in ${seconds} s per harness (${harnesses[*]})"

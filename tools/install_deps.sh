@@ -12,8 +12,8 @@ packages=(
   python3                                    # sample generator and plugin core (standard library)
   coinor-clp                                 # independent LP solver for the cross-check scripts
   chromium                                   # headless browser for the viewer tests
-  clang libclang-rt-14-dev                   # libFuzzer and clang's sanitizer runtimes (tools/fuzz.sh);
-                                             # GCC's ASan/UBSan come with build-essential
+  clang libclang-rt-14-dev                   # clang with libFuzzer and its sanitizer runtimes
+                                             # (tools/fuzz.sh, tools/sanitize.sh)
 )
 # Node.js and npm (.3dm exchange with rhino3dm, the three.js viewer, their tests): any install on
 # PATH will do; Debian's packages only when there is none.

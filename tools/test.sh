@@ -11,5 +11,6 @@ ctest --test-dir build --output-on-failure -j"$(nproc)" "$@"
 # Memory errors and undefined behaviour the Release run cannot see: the suite under ASan+UBSan.
 tools/sanitize.sh
 # 35 s each of coverage-guided fuzzing of the model stage, the whole analysis and the conic
-# solver, starting from the committed corpora (tests/fuzz/corpus*).
-tools/fuzz.sh --smoke
+# solver, starting from the committed corpora (tests/fuzz/corpus*), with the harnesses that
+# tools/sanitize.sh built.
+tools/fuzz.sh --smoke --tree build-asan-ci
