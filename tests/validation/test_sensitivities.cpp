@@ -46,6 +46,14 @@ double value_of(const AnalysisResult& r) {
   return r.load_multiplier.value_or(std::nan(""));
 }
 
+// Central differences carry the solver's error over the step: alpha to ~1e-8 relative (the
+// default tolerances) over a step of 1e-4 would be ~5e-5 relative in the difference, above the
+// 1e-5 the joints are compared to, so the differenced solves run at tighter tolerances. The sum
+// over every joint uses a larger step and a looser comparison.
+constexpr double kStep = 1e-4;
+constexpr double kFactorStep = 1e-3;
+constexpr double kDifferenceTolerance = 1e-10;
+
 struct Scene {
   const char* sample;
   model::Formulation formulation;
@@ -67,6 +75,10 @@ class WallDifferences : public ::testing::TestWithParam<Scene> {
   template <class Apply>
   double difference(Apply apply, double h) const {
     model::Model up = loaded_.model, down = loaded_.model;
+    for (model::Model* m : {&up, &down}) {
+      m->analysis.tol_relative_gap = kDifferenceTolerance;
+      m->analysis.tol_feasibility = kDifferenceTolerance;
+    }
     apply(up, h);
     apply(down, -h);
     return (value_of(rbla::analysis::analyse(up)) - value_of(rbla::analysis::analyse(down))) / (2.0 * h);
@@ -77,12 +89,6 @@ class WallDifferences : public ::testing::TestWithParam<Scene> {
   AnalysisResult result_;
   double value_ = 0.0;
 };
-
-// Central differences carry the solver's error over the step: alpha to ~1e-8 relative over a
-// step of 1e-4 is ~5e-5 relative in the difference (the 3-D cones' interior point lands less
-// exactly than the LP's). The sum over every joint uses a larger step and a looser tolerance.
-constexpr double kStep = 1e-4;
-constexpr double kFactorStep = 1e-3;
 
 TEST_P(WallDifferences, FrictionFactorMatchesACentralDifference) {
   const double fd = difference([](model::Model& m, double h) {
