@@ -1,15 +1,19 @@
 // rbla_conic_cbf_solve: solves a CBF file (the subset rbla::conic::write_cbf writes) and prints
 // one JSON object with the outcome. Used by tests/crosscheck/crosscheck_cvxopt.py.
-//   rbla_conic_cbf_solve problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns]
-//                        [--ordering best|amd|metis|default] [--correctors K]
+//   rbla_conic_cbf_solve problem.cbf [--verbose] [--no-equilibrate] [--central-start]
+//                        [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K]
 //                        [--blas-threads N] [--threads 1|2] [--split-min-rows R]
-//                        [--write-solution FILE]
+//                        [--reg-static D] [--refine-tol T] [--step-fraction F]
+//                        [--perturb-b E] [--perturb-c E] [--write-solution FILE]
+// --central-start starts from x = z = e instead of the least-squares point; --perturb-b and
+// --perturb-c add seeded noise to b and c (a test of whether ties slow a solve).
 // --write-solution writes x, y and z, one number per line after a line "x n", "y m", "z n", for
 // a check of the solution by another program (bench/conic/highs_lp.py --check).
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 #include <exception>
 #include <iostream>
 
@@ -38,23 +42,39 @@ void write_solution(const char* path, const rbla::conic::Solution& solution) {
   }
 }
 
+// Adds uniform noise of relative size eps_b (of ‖b‖∞) to every b_i and of absolute size eps_c
+// to every c_j, from a fixed seed: ties between optimal solutions (a degenerate optimal face)
+// are broken, the problem is otherwise the same to that size.
+void perturb(double eps_b, double eps_c, rbla::conic::ConicProblem& problem) {
+  std::mt19937_64 random(1);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double b_size = problem.b.lpNorm<Eigen::Infinity>();
+  if (eps_b != 0.0)
+    for (Eigen::Index i = 0; i < problem.b.size(); ++i) problem.b[i] += eps_b * b_size * unit(random);
+  if (eps_c != 0.0)
+    for (Eigen::Index j = 0; j < problem.c.size(); ++j) problem.c[j] += eps_c * unit(random);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N] [--threads 1|2] [--split-min-rows R] [--reg-static D] [--refine-tol T] [--step-fraction F] [--write-solution FILE]\n",
+                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--central-start] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N] [--threads 1|2] [--split-min-rows R] [--reg-static D] [--refine-tol T] [--step-fraction F] [--perturb-b E] [--perturb-c E] [--write-solution FILE]\n",
                  argv[0]);
     return 2;
   }
   rbla::conic::Settings settings;
   const char* solution_path = nullptr;
+  double perturb_b = 0.0, perturb_c = 0.0;
   for (int k = 2; k < argc; ++k) {
     if (std::strcmp(argv[k], "--verbose") == 0) {
       settings.verbose = true;
       settings.log_stream = &std::cerr;
     } else if (std::strcmp(argv[k], "--no-equilibrate") == 0) {
       settings.equilibrate = false;
+    } else if (std::strcmp(argv[k], "--central-start") == 0) {
+      settings.least_squares_start = false;
     } else if (std::strcmp(argv[k], "--no-dense-columns") == 0) {
       settings.dense_columns = false;
     } else if (std::strcmp(argv[k], "--blas-threads") == 0 && k + 1 < argc) {
@@ -77,6 +97,10 @@ int main(int argc, char** argv) {
       settings.refine_tol_rel = std::atof(argv[++k]);
     } else if (std::strcmp(argv[k], "--write-solution") == 0 && k + 1 < argc) {
       solution_path = argv[++k];
+    } else if (std::strcmp(argv[k], "--perturb-b") == 0 && k + 1 < argc) {
+      perturb_b = std::atof(argv[++k]);
+    } else if (std::strcmp(argv[k], "--perturb-c") == 0 && k + 1 < argc) {
+      perturb_c = std::atof(argv[++k]);
     } else if (std::strcmp(argv[k], "--step-fraction") == 0 && k + 1 < argc) {
       settings.step_fraction = std::atof(argv[++k]);
     } else {
@@ -85,7 +109,8 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    const rbla::conic::ConicProblem problem = rbla::conic::read_cbf_file(argv[1]);
+    rbla::conic::ConicProblem problem = rbla::conic::read_cbf_file(argv[1]);
+    perturb(perturb_b, perturb_c, problem);
     const rbla::conic::Solution solution = rbla::conic::solve(problem, settings);
     const auto& info = solution.info;
     std::printf(
