@@ -51,6 +51,9 @@ class Cone {
   /// max_step(λ, dv) for the λ of the last update_scaling, with what depends on λ alone cached
   /// (the solver asks this several times per iteration for every cone).
   virtual double max_step_from_lambda(ConstVecRef dv) const = 0;
+  /// Appends, for each factor (an entry of R_+, a second-order cone) whose boundary the step
+  /// λ + α dv reaches at some α < limit, that α.
+  virtual void append_steps_from_lambda(ConstVecRef dv, double limit, std::vector<double>& out) const = 0;
   /// Gondzio's centrality target for a trial complementarity product v: out = P(v) − v, where P
   /// moves each eigenvalue of v (each entry for R_+; v₀ ± ‖v₁‖ along v's own spectral frame for
   /// an SOC) into [lo, hi]; a decrease is capped at −hi (Gondzio 1996, §3).
@@ -87,6 +90,7 @@ class NonnegativeCone final : public Cone {
   double max_step(ConstVecRef v, ConstVecRef dv) const override;
   double min_eigenvalue(ConstVecRef v) const override { return v.minCoeff(); }
   double max_step_from_lambda(ConstVecRef dv) const override { return max_step(lambda_, dv); }
+  void append_steps_from_lambda(ConstVecRef dv, double limit, std::vector<double>& out) const override;
   void centrality_correction(ConstVecRef v, double lo, double hi, VecRef out) const override;
   void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
   double* pack_W2(double* out) const override;
@@ -121,6 +125,7 @@ class SecondOrderCones final : public Cone {
   double max_step(ConstVecRef v, ConstVecRef dv) const override;
   double min_eigenvalue(ConstVecRef v) const override;
   double max_step_from_lambda(ConstVecRef dv) const override;
+  void append_steps_from_lambda(ConstVecRef dv, double limit, std::vector<double>& out) const override;
   void centrality_correction(ConstVecRef v, double lo, double hi, VecRef out) const override;
   void append_scaling_blocks(std::vector<ScalingBlock>& blocks) const override;
   double* pack_W2(double* out) const override;
@@ -164,6 +169,8 @@ class ConeSet {
   double max_step(const Vec& v, const Vec& dv) const;
   double min_eigenvalue(const Vec& v) const;
   double max_step_from_lambda(const Vec& dv) const;
+  /// Each factor's step to its boundary along dv from λ, those below `limit` (Cone's).
+  void append_steps_from_lambda(const Vec& dv, double limit, std::vector<double>& out) const;
   void centrality_correction(const Vec& v, double lo, double hi, Vec& out) const;
   std::vector<ScalingBlock> scaling_blocks() const;
   void pack_W2(std::vector<double>& out) const;  ///< out must be sized Σ block size²

@@ -147,6 +147,10 @@ double ConeSet::max_step_from_lambda(const Vec& dv) const {
   return smallest_of(steps);
 }
 
+void ConeSet::append_steps_from_lambda(const Vec& dv, double limit, std::vector<double>& out) const {
+  for (const auto& k : cones_) k->append_steps_from_lambda(dv.segment(k->offset(), k->dim()), limit, out);
+}
+
 std::vector<ScalingBlock> ConeSet::scaling_blocks() const {
   std::vector<ScalingBlock> blocks;
   for (const auto& k : cones_) k->append_scaling_blocks(blocks);

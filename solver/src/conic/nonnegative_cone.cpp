@@ -40,6 +40,15 @@ double NonnegativeCone::max_step(ConstVecRef v, ConstVecRef dv) const {
   return step;
 }
 
+void NonnegativeCone::append_steps_from_lambda(ConstVecRef dv, double limit,
+                                               std::vector<double>& out) const {
+  for (Eigen::Index i = 0; i < dim(); ++i) {
+    if (dv[i] >= 0) continue;
+    const double step = -lambda_[i] / dv[i];
+    if (step < limit) out.push_back(step);
+  }
+}
+
 void NonnegativeCone::centrality_correction(ConstVecRef v, double lo, double hi,
                                             VecRef out) const {
   for (Eigen::Index i = 0; i < dim(); ++i) out[i] = centrality_change(v[i], lo, hi);

@@ -189,6 +189,15 @@ double SecondOrderCones::max_step_from_lambda(ConstVecRef dv) const {
   return step;
 }
 
+void SecondOrderCones::append_steps_from_lambda(ConstVecRef dv, double limit,
+                                                std::vector<double>& out) const {
+  for (std::size_t k = 0; k < dims_.size(); ++k) {
+    const double step = step_to_boundary(lambda_.data() + starts_[k], lambda_norm_[k],
+                                         dv.data() + starts_[k], dims_[k]);
+    if (step < limit) out.push_back(step);
+  }
+}
+
 double SecondOrderCones::step_to_boundary(const double* v, double v_norm, const double* dv, int q) {
   // Map v to the identity e by the automorphism H(v̄)⁻¹ (v̄ = v/√det v); then
   // e + α ρ ∈ K  ⇔  α (‖ρ₁‖ − ρ₀) ≤ 1. Same formula as ECOS (conelp.c, lineSearch).

@@ -54,6 +54,8 @@ std::vector<std::string> Settings::validate() const {
   if (blas_threads < 0 || blas_threads > 256) messages.push_back("blas_threads must be in [0, 256]");
   if (threads < 1 || threads > 2) messages.push_back("threads must be 1 or 2");
   if (split_min_rows < 0) messages.push_back("split_min_rows must be >= 0");
+  if (!(sigma_skip_fraction >= 0 && sigma_skip_fraction < 1))
+    messages.push_back("sigma_skip_fraction must be in [0, 1)");
   if (max_centrality_correctors < 0 || max_centrality_correctors > 20)
     messages.push_back("max_centrality_correctors must be in [0, 20]");
   if (equilibrate_max_iter < 0) messages.push_back("equilibrate_max_iter must be >= 0");

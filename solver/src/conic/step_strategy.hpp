@@ -3,7 +3,8 @@
 // as in CVXOPT's conelp, Vandenberghe 2010, §5) with Gondzio's multiple centrality correctors
 // (Gondzio 1996; Colombo & Gondzio 2008).
 //
-//   predictor: η = 1, d = −λ∘λ, d_κ = −τκ; α_aff its longest step, σ = (1 − α_aff)³;
+//   predictor: η = 1, d = −λ∘λ, d_κ = −τκ; α_aff its longest step past the few factors that
+//              block it first (sigma_step), σ = (1 − α_aff)³;
 //   corrector: η = 1 − σ, d = −λ∘λ − (W⁻¹dx_a)∘(W dz_a) + σμe, d_κ = −τκ − dτ_a dκ_a + σμ.
 
 #include "kkt_system.hpp"
@@ -33,6 +34,7 @@ class StepStrategy {
   double max_step(const Direction& d);
 
  private:
+  double sigma_step(double alpha_aff);
   void corrector(KktSystem& kkt, const Direction& affine, Step& step);
   void centrality_correctors(KktSystem& kkt, Step& step, Info& info);
 
@@ -45,6 +47,7 @@ class StepStrategy {
   double kappa_rhs_ = 0;     // and its d_κ
   Direction affine_, trial_;
   Vec trial_s_, trial_z_, trial_v_;
+  std::vector<double> blocking_;  // steps of the factors that block the affine step
 };
 
 }  // namespace rbla::conic::detail

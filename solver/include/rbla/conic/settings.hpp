@@ -59,6 +59,10 @@ struct Settings {
   /// Gondzio centrality correctors per iteration, each one extra solve with the current factor
   /// (kept only when it lengthens the step by 1 %); 0 gives plain Mehrotra.
   int max_centrality_correctors = 3;
+  /// σ = (1 − α)³ with α the affine step past the first ⌈f ν⌉ factors that block it (ν the
+  /// degree of K: one per R_+ entry and per second-order cone, primal and dual counted apart);
+  /// 0 is Mehrotra's rule with the affine step itself. See StepStrategy::sigma_step.
+  double sigma_skip_fraction = 1e-3;
   /// λ of ConicSolver::set_warm_start: the weight of the given point against the central start
   /// e, in (0, 1).
   double warm_start_weight = 0.9;
