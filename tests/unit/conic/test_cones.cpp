@@ -1,6 +1,7 @@
 // Identities of the cone operations (NT scaling, Jordan algebra, step to the boundary).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <random>
 
@@ -157,4 +158,54 @@ TEST(ConicCones, NonnegativeScalingAndStep) {
   const Vec d = (Vec(3) << -2.0, 1.0, -1e-6).finished();
   EXPECT_DOUBLE_EQ(cone.max_step(x, d), 0.5);
   EXPECT_FALSE(cone.update_scaling(-x, z));
+}
+
+TEST(ConicCones, StepsFromLambdaListEachBlockingFactor) {
+  // What σ's step past the first blockers reads (StepStrategy::sigma_step): one step per factor
+  // that the direction takes to its boundary before `limit`, each the factor's own step, so the
+  // smallest is max_step_from_lambda.
+  std::mt19937 rng(11);
+  const std::vector<Eigen::Index> dims{3, 2, 5, 3};
+  const Eigen::Index n = 13;
+  Vec x(n), z(n), a(n);
+  Eigen::Index start = 0;
+  for (Eigen::Index q : dims) {
+    x.segment(start, q) = random_interior_soc(rng, static_cast<int>(q), 0.3);
+    z.segment(start, q) = random_interior_soc(rng, static_cast<int>(q), 0.7);
+    a.segment(start, q) = random_interior_soc(rng, static_cast<int>(q), 0.2) - random_interior_soc(rng, static_cast<int>(q), 0.1);
+    start += q;
+  }
+  SecondOrderCones run(0, dims);
+  ASSERT_TRUE(run.update_scaling(x, z));
+  std::vector<double> all;
+  run.append_steps_from_lambda(a, std::numeric_limits<double>::infinity(), all);
+  std::vector<double> expected;
+  start = 0;
+  for (Eigen::Index q : dims) {
+    SecondOrderCones one(0, {q});
+    ASSERT_TRUE(one.update_scaling(x.segment(start, q), z.segment(start, q)));
+    const double step = one.max_step_from_lambda(a.segment(start, q));
+    if (step < std::numeric_limits<double>::infinity()) expected.push_back(step);
+    start += q;
+  }
+  ASSERT_FALSE(expected.empty());
+  EXPECT_EQ(all, expected);
+  EXPECT_EQ(*std::min_element(all.begin(), all.end()), run.max_step_from_lambda(a));
+  const double limit = *std::max_element(expected.begin(), expected.end());
+  std::vector<double> below;
+  run.append_steps_from_lambda(a, limit, below);
+  EXPECT_EQ(below.size(), expected.size() - 1);
+
+  NonnegativeCone orthant(0, 4);
+  ASSERT_TRUE(orthant.update_scaling((Vec(4) << 1.0, 4.0, 1.0, 2.0).finished(),
+                                     (Vec(4) << 4.0, 1.0, 1.0, 2.0).finished()));
+  // λ = (2, 2, 1, 2): steps 2/4 = 0.5 and 1/0.5 = 2; the rising entries never block.
+  std::vector<double> steps;
+  orthant.append_steps_from_lambda((Vec(4) << -4.0, 1.0, -0.5, 0.0).finished(), 10.0, steps);
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_DOUBLE_EQ(steps[0], 0.5);
+  EXPECT_DOUBLE_EQ(steps[1], 2.0);
+  steps.clear();
+  orthant.append_steps_from_lambda((Vec(4) << -4.0, 1.0, -0.5, 0.0).finished(), 1.0, steps);
+  EXPECT_EQ(steps, std::vector<double>{0.5});
 }
