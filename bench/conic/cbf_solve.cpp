@@ -3,7 +3,7 @@
 //   rbla_conic_cbf_solve problem.cbf [--verbose] [--no-equilibrate] [--central-start]
 //                        [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K]
 //                        [--blas-threads N] [--threads 1|2] [--split-min-rows R]
-//                        [--reg-static D] [--refine-tol T] [--step-fraction F]
+//                        [--reg-static D] [--refine-tol T] [--step-fraction F] [--sigma-skip F]
 //                        [--perturb-b E] [--perturb-c E] [--write-solution FILE]
 // --central-start starts from x = z = e instead of the least-squares point; --perturb-b and
 // --perturb-c add seeded noise to b and c (a test of whether ties slow a solve).
@@ -60,7 +60,7 @@ void perturb(double eps_b, double eps_c, rbla::conic::ConicProblem& problem) {
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--central-start] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N] [--threads 1|2] [--split-min-rows R] [--reg-static D] [--refine-tol T] [--step-fraction F] [--perturb-b E] [--perturb-c E] [--write-solution FILE]\n",
+                 "usage: %s problem.cbf [--verbose] [--no-equilibrate] [--central-start] [--no-dense-columns] [--ordering best|amd|metis|default] [--correctors K] [--blas-threads N] [--threads 1|2] [--split-min-rows R] [--reg-static D] [--refine-tol T] [--step-fraction F] [--sigma-skip F] [--perturb-b E] [--perturb-c E] [--write-solution FILE]\n",
                  argv[0]);
     return 2;
   }
@@ -101,6 +101,8 @@ int main(int argc, char** argv) {
       perturb_b = std::atof(argv[++k]);
     } else if (std::strcmp(argv[k], "--perturb-c") == 0 && k + 1 < argc) {
       perturb_c = std::atof(argv[++k]);
+    } else if (std::strcmp(argv[k], "--sigma-skip") == 0 && k + 1 < argc) {
+      settings.sigma_skip_fraction = std::atof(argv[++k]);
     } else if (std::strcmp(argv[k], "--step-fraction") == 0 && k + 1 < argc) {
       settings.step_fraction = std::atof(argv[++k]);
     } else {
