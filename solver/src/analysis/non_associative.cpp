@@ -41,7 +41,7 @@ constexpr double kCheckDilatancy = 1e-2;
 /// The schedules of the trajectories, in the order they run. Where a run tests decides which of
 /// several collapse states it certifies. On the six scenes of docs/benchmark/non_associative_states.md
 /// the first certified the most conservative state of the six schedules on three, and the first
-/// three together on five (within 0.01 % on the sixth).
+/// three together on five (within 0.04 % on the sixth).
 constexpr TestSchedule kSchedules[] = {{3, 10}, {3, 3}, {5, 20}, {5, 5}, {2, 2}, {15, 15}};
 constexpr int kNumSchedules = static_cast<int>(sizeof(kSchedules) / sizeof(kSchedules[0]));
 
