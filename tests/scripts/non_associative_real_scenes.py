@@ -64,6 +64,9 @@ def compare(name, a, n):
                         % (name, len(c["non_associative"]), c["non_associative_stop"], c["non_associative_gap"]))
     if nv > av + 1e-7 * max(1.0, abs(av)):
         problems.append("%s: non-associative %.12g above associative %.12g" % (name, nv, av))
+    bound = c["non_associative_bound"]
+    if abs(bound - av) > 1e-7 * max(1.0, abs(av)):
+        problems.append("%s: bound %.12g reported, associative run %.12g" % (name, bound, av))
     low, high = c["non_associative_range"]["low"], c["non_associative_range"]["high"]
     if not low - 1e-12 <= nv <= high + 1e-12:
         problems.append("%s: value %.12g outside its range [%.12g, %.12g]" % (name, nv, low, high))

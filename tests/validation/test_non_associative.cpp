@@ -2,8 +2,11 @@
 // settings, and the properties it promises on every model: each step satisfies Coulomb's
 // condition (never above the associative value, never below it for a settlement reaction), the
 // reported state is compatible with its mechanism (the work balance with mu N |slip| holds), and
-// the value reported is the conservative end of the range of compatible states.
+// the value reported is the conservative end of the range of compatible states, and the verdict
+// says whether it is certified and names the associative bound.
 #include "validation_helpers.hpp"
+
+#include "analysis/text.hpp"
 
 #include <gtest/gtest.h>
 
@@ -129,6 +132,11 @@ TEST(NonAssociative, EveryStepSatisfiesCoulomb) {
     ASSERT_EQ(n.verdict, Verdict::Collapse) << n.verdict_text;
     const bool settlement = a.base_reaction.has_value();
     const double reference = settlement ? *a.base_reaction : *a.load_multiplier;
+    // The bound reported with the state is the associative value, found by the run itself.
+    ASSERT_TRUE(n.non_associative_bound.has_value());
+    EXPECT_LT(relative_error(*n.non_associative_bound, reference), 1e-7) << *n.non_associative_bound;
+    EXPECT_NE(n.verdict_text.find("non-associative: a certified collapse state"), std::string::npos)
+        << n.verdict_text;
     ASSERT_GE(n.non_associative.size(), 1u);
     // The steps are solved to a relative gap and feasibility of 1e-6 (non_associative.cpp,
     // kStepGap), so a step's value is that close to its problem's: the settling block's first step
@@ -164,6 +172,10 @@ TEST(NonAssociative, StoppedEarlySaysSoAndStaysAdmissible) {
   EXPECT_TRUE(std::any_of(n.warnings.begin(), n.warnings.end(),
                           [](const auto& w) { return w.code == "non_associative_not_converged"; }));
   EXPECT_LE(alpha_of(n), alpha_of(a) * (1.0 + 1e-7));
+  // The verdict does not present the state as a collapse state, and gives the bound that holds.
+  EXPECT_NE(n.verdict_text.find("not certified"), std::string::npos) << n.verdict_text;
+  EXPECT_NE(n.verdict_text.find("alpha above the associative " + analysis::format(alpha_of(a))), std::string::npos)
+      << n.verdict_text;
 }
 
 

@@ -210,6 +210,11 @@ struct AnalysisResult {
   /// The values of all states compatible with the mechanism found (alpha, or R in kN): non-
   /// associative collapse is not unique; the conservative end is the one reported.
   std::optional<std::pair<double, double>> non_associative_range;
+  /// The associative value of the same model (alpha, or R in kN), the scheme's first solve. Every
+  /// non-associative collapse state has forces admissible for the associative problem, so its
+  /// alpha is at most this and its R at least this (static theorem; Drucker 1954): a proven
+  /// one-sided bound, whatever state the scheme certifies. Set when the scheme ran.
+  std::optional<double> non_associative_bound;
   /// Every run of the scheme, in schedule order; non_associative_reported is the one whose state
   /// is reported (the conservative certified one).
   std::vector<NonAssociativeTrajectory> non_associative_trajectories;

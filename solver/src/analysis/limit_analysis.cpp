@@ -114,11 +114,29 @@ std::string cannot_stand_text(const model::Model& m, const AnalysisResult& resul
   return text + ".";
 }
 
+/// For a non-associative analysis, what its value is (a certified collapse state, or not) and the
+/// associative bound that every non-associative collapse state obeys
+/// (AnalysisResult::non_associative_bound); empty for associative ones.
+std::string non_associative_clause(const model::Model& m, const AnalysisResult& result) {
+  if (!result.non_associative_bound) return "";
+  const bool settlement = result.base_reaction.has_value();
+  const std::string bound = settlement ? "R below the associative " +
+                                             format(*result.non_associative_bound / m.units.force_to_kN) + " " +
+                                             m.units.force_name
+                                       : "alpha above the associative " + format(*result.non_associative_bound);
+  if (result.non_associative_converged) {
+    return "non-associative: a certified collapse state, others may exist; none has " + bound;
+  }
+  return "non-associative, not certified: the scheme stopped before a state passed the fixed-point test; no "
+         "non-associative collapse state has " + bound;
+}
+
 void write_verdict_text(const model::Model& m, AnalysisResult& result) {
   const std::string force_unit = m.units.force_name;
   std::size_t falling = 0;
   for (const auto& motion : result.mechanism.blocks) falling += motion.moving ? 1 : 0;
   const std::size_t cracked = result.mechanism.cracked_interfaces.size();
+  const std::string non_associative = non_associative_clause(m, result);
   switch (result.verdict) {
     case Verdict::Collapse:
       if (result.base_reaction) {
@@ -130,12 +148,14 @@ void write_verdict_text(const model::Model& m, AnalysisResult& result) {
           if (r0 > 0) loss += " = " + format(100.0 * (r0 - *result.base_reaction) / r0, 3) + " %";
           loss += ")";
         }
+        if (!non_associative.empty()) loss += "; " + non_associative;
         result.verdict_text = "Collapse under settlement: base reaction at collapse R = " +
                               format(*result.base_reaction / m.units.force_to_kN) + " " + force_unit + loss + "; " +
                               count(cracked, "interface cracks", "interfaces crack") + ".";
       } else {
         result.verdict_text = "Collapse at load multiplier alpha = " + format(result.load_multiplier.value_or(0.0)) +
-                              "; " + count(falling, "block moves", "blocks move") + ", " +
+                              (non_associative.empty() ? "" : " (" + non_associative + ")") + "; " +
+                              count(falling, "block moves", "blocks move") + ", " +
                               count(cracked, "interface cracks", "interfaces crack") + ".";
       }
       break;

@@ -456,6 +456,7 @@ void run_non_associative(const model::Model& m, const Formulation& formulation, 
                          const conic::Solution& associative, const Deadline& deadline, double& value,
                          AnalysisResult& result) {
   const int runs = std::clamp(m.analysis.non_associative_trajectories, 1, kNumSchedules);
+  result.non_associative_bound = value;
   const AnalysisResult before = result;
   std::vector<NonAssociativeTrajectory> found;
   double solve_seconds = 0.0, assemble_seconds = 0.0;

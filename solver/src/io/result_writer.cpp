@@ -86,7 +86,7 @@ json warning_summary_json(const std::vector<model::Warning>& warnings) {
 }
 
 json model_only_result(const model::Model& model, const model::StageTimings& timings, const std::string& source) {
-  json result{{"schema_version", "1.6.0"},
+  json result{{"schema_version", "1.7.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
               {"verdict", "Model read and checked; no analysis was run."},
@@ -224,6 +224,9 @@ void add_non_associative_convergence(const model::Model& model, const analysis::
   if (result.non_associative_range) {
     convergence["non_associative_range"] = {{"low", non_negative(result.non_associative_range->first / value_unit)},
                                             {"high", non_negative(result.non_associative_range->second / value_unit)}};
+  }
+  if (result.non_associative_bound) {
+    convergence["non_associative_bound"] = non_negative(*result.non_associative_bound / value_unit);
   }
   json runs = json::array();
   for (std::size_t k = 0; k < result.non_associative_trajectories.size(); ++k) {
