@@ -306,6 +306,15 @@ TEST(SvgMechanism, OtherVerdictTitles) {
   svg = rbla::io::mechanism_svg(model, result);
   EXPECT_NE(svg.find("Collapse under settlement — base reaction R = 881.75 MN"), std::string::npos);
   EXPECT_EQ(xml_problem(svg), "");
+  EXPECT_EQ(svg.find("not certified"), std::string::npos);
+
+  // A non-associative state that did not pass the fixed-point test is not titled a collapse state.
+  result.friction_model = rbla::model::FrictionModel::NonAssociative;
+  result.non_associative_converged = false;
+  svg = rbla::io::mechanism_svg(model, result);
+  EXPECT_NE(svg.find("R = 881.75 MN — non-associative, not certified"), std::string::npos);
+  result.non_associative_converged = true;
+  EXPECT_EQ(rbla::io::mechanism_svg(model, result).find("not certified"), std::string::npos);
 }
 
 TEST(SvgMechanism, MarksAndListsTheMostInfluentialJoints) {

@@ -391,20 +391,30 @@ void append_text(std::string& out, double x, double y, const std::string& text, 
          attributes + ">" + escape(text) + "</text>\n";
 }
 
+/// A non-associative state that did not pass the fixed-point test is drawn, but not as a collapse
+/// state (the verdict sentence says why).
+std::string certification_words(const AnalysisResult& result) {
+  const bool uncertified =
+      result.friction_model == model::FrictionModel::NonAssociative && !result.non_associative_converged;
+  return uncertified ? " — non-associative, not certified" : "";
+}
+
+std::string collapse_title(const model::Model& model, const AnalysisResult& result) {
+  if (result.base_reaction && (result.type == model::AnalysisType::Settlement || !result.load_multiplier)) {
+    const double factor = model.units.force_to_kN > 0.0 ? model.units.force_to_kN : 1.0;
+    std::string title = "Collapse under settlement — base reaction R = " +
+                        significant5(*result.base_reaction / factor) + " " + model.units.force_name;
+    if (result.initial_base_reaction)
+      title += " (R₀ = " + significant5(*result.initial_base_reaction / factor) + " before settlement)";
+    return title;
+  }
+  if (result.load_multiplier) return "Collapse mechanism — α = " + fixed(*result.load_multiplier, 4);
+  return result.type == model::AnalysisType::Settlement ? "Collapse under settlement" : "Collapse mechanism";
+}
+
 std::string title_text(const model::Model& model, const AnalysisResult& result) {
   switch (result.verdict) {
-    case Verdict::Collapse:
-      if (result.base_reaction &&
-          (result.type == model::AnalysisType::Settlement || !result.load_multiplier)) {
-        const double factor = model.units.force_to_kN > 0.0 ? model.units.force_to_kN : 1.0;
-        std::string title = "Collapse under settlement — base reaction R = " +
-                            significant5(*result.base_reaction / factor) + " " + model.units.force_name;
-        if (result.initial_base_reaction)
-          title += " (R₀ = " + significant5(*result.initial_base_reaction / factor) + " before settlement)";
-        return title;
-      }
-      if (result.load_multiplier) return "Collapse mechanism — α = " + fixed(*result.load_multiplier, 4);
-      return result.type == model::AnalysisType::Settlement ? "Collapse under settlement" : "Collapse mechanism";
+    case Verdict::Collapse: return collapse_title(model, result) + certification_words(result);
     case Verdict::NoMechanism: return "No mechanism: α unbounded";
     case Verdict::CannotStand: return "Cannot stand under dead load — falling blocks highlighted";
     case Verdict::SolverFailure: return "No mechanism drawn: the conic solver failed";
