@@ -1,9 +1,9 @@
 // The non-associative scheme (analysis/non_associative.hpp) against closed forms at the default
 // settings, and the properties it promises on every model: each step satisfies Coulomb's
 // condition (never above the associative value, never below it for a settlement reaction), the
-// reported state is compatible with its mechanism (the work balance with mu N |slip| holds), and
-// the value reported is the conservative end of the range of compatible states, and the verdict
-// says whether it is certified and names the associative bound.
+// reported state is compatible with its mechanism (the work balance with mu N |slip| holds), the
+// value reported is the conservative end of the range of compatible states, and the verdict says
+// whether it is certified and names the associative bound.
 #include "validation_helpers.hpp"
 
 #include "analysis/text.hpp"
@@ -172,7 +172,7 @@ TEST(NonAssociative, StoppedEarlySaysSoAndStaysAdmissible) {
   EXPECT_TRUE(std::any_of(n.warnings.begin(), n.warnings.end(),
                           [](const auto& w) { return w.code == "non_associative_not_converged"; }));
   EXPECT_LE(alpha_of(n), alpha_of(a) * (1.0 + 1e-7));
-  // The verdict does not present the state as a collapse state, and gives the bound that holds.
+  // The verdict says the state is not certified, and gives the bound that holds for every state.
   EXPECT_NE(n.verdict_text.find("not certified"), std::string::npos) << n.verdict_text;
   EXPECT_NE(n.verdict_text.find("alpha above the associative " + analysis::format(alpha_of(a))), std::string::npos)
       << n.verdict_text;
