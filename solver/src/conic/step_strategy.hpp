@@ -34,6 +34,8 @@ class StepStrategy {
   double max_step(const Direction& d);
 
  private:
+  int skipped_blockers() const;
+  double affine_step();
   double sigma_step(double alpha_aff);
   void corrector(KktSystem& kkt, const Direction& affine, Step& step);
   void centrality_correctors(KktSystem& kkt, Step& step, Info& info);
