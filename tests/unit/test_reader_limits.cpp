@@ -219,6 +219,25 @@ TEST(HonestMessages, ATinyDirectionIsADirection) {
   EXPECT_TRUE(has_issue_at(issues, "/analysis/seismic/direction", "all three components are 0"));
 }
 
+// An analysis section that only sets how to analyse (friction model, cone...) gets the default of
+// what to analyse, as a file without the section does: seismic along +x when there are no live
+// loads. One that asks for a load multiplier without saying of what is still refused.
+TEST(HonestMessages, SettingsAloneTakeTheDefaultAnalysis) {
+  json m = two_boxes();
+  m.erase("analysis");
+  const auto absent = load_model_text(m.dump()).model.analysis;
+  m["analysis"] = {{"friction_model", "non_associative"}};
+  ASSERT_TRUE(model_issues(m.dump()).empty()) << describe_issues(model_issues(m.dump()));
+  const auto settings_only = load_model_text(m.dump()).model.analysis;
+  ASSERT_TRUE(absent.seismic_direction && settings_only.seismic_direction);
+  EXPECT_EQ(*settings_only.seismic_direction, *absent.seismic_direction);
+  EXPECT_EQ(*settings_only.seismic_direction, rbla::model::Vec3::UnitX());
+  EXPECT_EQ(settings_only.friction_model, rbla::model::FrictionModel::NonAssociative);
+
+  m["analysis"] = {{"type", "load_multiplier"}};
+  EXPECT_TRUE(has_issue_at(model_issues(m.dump()), "/analysis", "needs live loads"));
+}
+
 TEST(HonestMessages, AnUnknownPropertyIsNamedAtItsPlace) {
   json m = two_boxes();
   m["colour"] = "red";

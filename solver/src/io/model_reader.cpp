@@ -118,17 +118,25 @@ model::PointLoad read_load(const json& entry, const std::string& pointer, const 
   return load;
 }
 
+/// Schema (/analysis): when it does not say what to compute, a load-multiplier analysis with the
+/// live loads, or, when there are none, seismic along +x (+y when gravity is along x).
+std::optional<Vec3> default_seismic_direction(const model::Model& m) {
+  if (!m.live_loads.empty()) return std::nullopt;
+  return std::abs(m.gravity.x()) > 0.5 ? Vec3::UnitY() : Vec3::UnitX();
+}
+
 void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
   model::AnalysisRequest& a = m.analysis;
   a.settlement_direction = m.gravity;
   const bool has_live = !m.live_loads.empty();
   if (!doc.contains("analysis")) {
-    // Schema: with no analysis section, the live loads, or else seismic along a horizontal axis.
-    if (!has_live) a.seismic_direction = std::abs(m.gravity.x()) > 0.5 ? Vec3::UnitY() : Vec3::UnitX();
+    a.seismic_direction = default_seismic_direction(m);
     return;
   }
   m.analysis_given = true;
   const json& s = doc["analysis"];
+  // Only settings (friction model, cone, tolerances...): the default analysis with them.
+  if (!s.contains("type") && !s.contains("seismic")) a.seismic_direction = default_seismic_direction(m);
   if (s.contains("type")) {
     a.type = s["type"].get<std::string>() == "settlement" ? model::AnalysisType::Settlement
                                                           : model::AnalysisType::LoadMultiplier;
