@@ -2,6 +2,7 @@
 #include "commands.hpp"
 
 #include "analysis/limit_analysis.hpp"
+#include "analysis/text.hpp"
 #include "io/problem_file.hpp"
 #include "io/svg_writer.hpp"
 
@@ -44,7 +45,8 @@ int run_solve(const CommonOptions& options) {
                           std::to_string(result.solver_info.iterations) + " interior-point iterations" +
                           (result.non_associative.empty()
                                ? std::string()
-                               : ", " + std::to_string(result.non_associative.size()) + " non-associative steps") +
+                               : ", " + analysis::count(result.non_associative.size() - 1, "non-associative step",
+                                                        "non-associative steps")) +
                           "; assembly " + seconds_text(result.assemble_seconds) + ")");
   } else {
     progress(options, "no solve ran (assembly " + seconds_text(result.assemble_seconds) + ")");

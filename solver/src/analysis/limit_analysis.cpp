@@ -68,10 +68,6 @@ Verdict verdict_of(conic::SolveStatus status, bool settlement) {
   return Verdict::SolverFailure;
 }
 
-std::string count(std::size_t n, const char* one, const char* many) {
-  return std::to_string(n) + " " + (n == 1 ? one : many);
-}
-
 // The loss of base reaction at collapse needs the reaction before settlement; see
 // initial_reaction.hpp for the definition used and why one is needed.
 void record_initial_reaction(const model::Model& m, AnalysisResult& result) {

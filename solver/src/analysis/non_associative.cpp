@@ -361,8 +361,8 @@ class ShiftScheme {
     } else {
       result_.warnings.push_back(
           {"non_associative_not_converged",
-           "the non-associative scheme stopped after " + std::to_string(result_.non_associative.size() - 1) +
-               " steps (" + result_.non_associative_stop + ") with a state whose mechanism still dilates (" +
+           "the non-associative scheme stopped after " + count(result_.non_associative.size() - 1, "step", "steps") +
+               " (" + result_.non_associative_stop + ") with a state whose mechanism still dilates (" +
                format(c.dilatancy, 3) +
                " of the value); the state satisfies the friction condition, so its value is never above the "
                "associative one, but it is not an exact non-associative collapse state",

@@ -11,4 +11,8 @@ std::string format(double value, int precision) {
   return out.str();
 }
 
+std::string count(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
 }  // namespace rbla::analysis

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstddef>
 #include <string>
 
 namespace rbla::analysis {
@@ -15,5 +16,8 @@ inline double seconds_since(Clock::time_point start) {
 
 /// A number for messages, `precision` significant digits.
 std::string format(double value, int precision = 6);
+
+/// "1 step", "3 steps": n with the singular or the plural.
+std::string count(std::size_t n, const char* one, const char* many);
 
 }  // namespace rbla::analysis
