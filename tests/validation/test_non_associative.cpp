@@ -213,6 +213,23 @@ TEST(NonAssociative, TheLastStepAtTheLimitIsCertifiedWhenItPasses) {
   EXPECT_GT(passed_at_limit, 0);
   EXPECT_GT(failed_at_limit, 0);
 }
+// The circumscribed pyramid lets shear exceed mu N (up to mu N / cos(pi/4) with four faces): the
+// state certified is one of that friction law, and a warning says so; the inscribed one does not.
+TEST(NonAssociative, TheCircumscribedPyramidIsNamedAsAnotherFrictionLaw) {
+  for (const std::string cone : {"pyramid_circumscribed", "pyramid_inscribed"}) {
+    Case c;
+    c.formulation = "3d";
+    c.cone = cone;
+    c.pyramid_faces = 4;
+    const auto n = run(at_defaults(finish(running_bond_blocks(5, 6), c)));
+    ASSERT_EQ(n.verdict, Verdict::Collapse) << n.verdict_text;
+    const auto warned = std::find_if(n.warnings.begin(), n.warnings.end(), [](const auto& w) {
+      return w.code == "non_associative_circumscribed_pyramid";
+    });
+    EXPECT_EQ(warned != n.warnings.end(), cone == "pyramid_circumscribed") << cone;
+    if (warned != n.warnings.end()) EXPECT_NE(warned->message.find("1.41 mu N"), std::string::npos) << warned->message;
+  }
+}
 
 // With several runs (analysis.non_associative.trajectories) the reported state is the
 // conservative certified one: no certified run found a lower alpha (settlement: a higher R); the

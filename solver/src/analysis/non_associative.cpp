@@ -455,6 +455,20 @@ void warn_about_spread(const model::Model& m, const Formulation& f, AnalysisResu
        "/analysis/non_associative/trajectories"});
 }
 
+/// The circumscribed pyramid's edges reach mu N / cos(pi/m): the scheme's states and its test
+/// (a prism of the same shape) follow that friction law, so a certified state may carry more shear
+/// than Coulomb's cone allows and be on the unsafe side of Coulomb's non-associative states.
+void warn_about_circumscribed_pyramid(const model::Model& m, AnalysisResult& result) {
+  if (m.analysis.cone != model::ConeKind::PyramidCircumscribed) return;
+  const double reach = 1.0 / std::cos(M_PI / m.analysis.pyramid_faces);
+  result.warnings.push_back(
+      {"non_associative_circumscribed_pyramid",
+       "with the circumscribed pyramid a contact point may carry shear up to " + format(reach, 3) +
+           " mu N: the non-associative state is one of that friction law, not of Coulomb's cone, and may be on "
+           "the unsafe side of it; use cone exact, or pyramid_inscribed for the safe side",
+       "/analysis/cone"});
+}
+
 }  // namespace
 
 void run_non_associative(const model::Model& m, const Formulation& formulation, conic::ConicSolver& solver,
@@ -498,6 +512,7 @@ void run_non_associative(const model::Model& m, const Formulation& formulation, 
   result.solve_seconds = before.solve_seconds + solve_seconds;
   result.assemble_seconds = before.assemble_seconds + assemble_seconds;
   warn_about_spread(m, formulation, result);
+  warn_about_circumscribed_pyramid(m, result);
 }
 
 }  // namespace rbla::analysis
