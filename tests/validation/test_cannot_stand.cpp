@@ -177,6 +177,29 @@ TEST(CannotStand, StandsOnlyWhenPushedEvenWhenTheLiveLoadFindsNoMechanism) {
   EXPECT_EQ(run(model).verdict, Verdict::NoMechanism);
 }
 
+// The non-associative scheme starts from an associative collapse state. Without one (the structure
+// cannot stand, or no mechanism forms) it does not run, and the result says nothing about it
+// rather than "not converged".
+TEST(CannotStand, TheNonAssociativeSchemeThatDidNotRunReportsNothing) {
+  const json blocks = json::array({box_block("post", 0.6, -0.5, -0.5, 1.0, 1.5, 0.0, "fixed"),
+                                   box_block("wall", 1.0, -0.5, 0.5, 1.5, 1.5, 2.0, "fixed"),
+                                   box_block("B", 0.0, 0.0, 0.0, 1.0, 1.0, 1.0)});
+  Case c;
+  c.friction_model = "non_associative";
+  json model = finish(blocks, c);
+  for (const bool check_dead_load : {true, false}) {
+    model["analysis"]["check_dead_load"] = check_dead_load;
+    const auto r = run(model);
+    ASSERT_EQ(r.verdict, check_dead_load ? Verdict::CannotStand : Verdict::NoMechanism) << r.verdict_text;
+    const json doc = io::analysis_result_json(io::load_model_text(model.dump()).model, r, {}, "");
+    EXPECT_TRUE(io::validate_result_text(doc.dump()).empty());
+    for (const char* key : {"non_associative", "non_associative_converged", "non_associative_checks"}) {
+      EXPECT_FALSE(doc["convergence"].contains(key)) << key << " with check_dead_load " << check_dead_load;
+    }
+    EXPECT_EQ(r.verdict_text.find("non-associative"), std::string::npos) << r.verdict_text;
+  }
+}
+
 // A running-bond wall (bricks 0.4 x 0.2 m) whose corner brick W0_0 hangs 5 cm above the base
 // (its bed joint lost: detection bridges 3 % of the joint's size, about 1.3 cm here): it is still joined to its neighbours, so only the solve can tell, and the
 // solver's certificate moves most bricks a little (it also rocks the far top corner upwards by 5 %

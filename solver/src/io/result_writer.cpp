@@ -385,7 +385,9 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
   if (result.solver_ran) out["solver"] = solver_json(result);
 
   json convergence{{"interior_point", interior_point_history_json(result)}};
-  if (result.friction_model == model::FrictionModel::NonAssociative) {
+  // The scheme starts from a collapse state of the associative analysis; with no mechanism, or
+  // none that can stand, it did not run and has nothing to report.
+  if (result.friction_model == model::FrictionModel::NonAssociative && !result.non_associative.empty()) {
     add_non_associative_convergence(model, result, convergence);
   }
   out["convergence"] = convergence;
