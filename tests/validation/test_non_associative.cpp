@@ -230,6 +230,44 @@ TEST(NonAssociative, TheCircumscribedPyramidIsNamedAsAnotherFrictionLaw) {
     if (warned != n.warnings.end()) EXPECT_NE(warned->message.find("1.41 mu N"), std::string::npos) << warned->message;
   }
 }
+// Each run counts the interior-point iterations of its steps (the history's, step 0 being the
+// associative solve before the run) and of its other solves: at least one fixed-point test ran.
+TEST(NonAssociative, ARunCountsTheIterationsOfEverySolve) {
+  const auto n = run(at_defaults(finish(running_bond_blocks(8, 10), Case{})));
+  ASSERT_EQ(n.verdict, Verdict::Collapse) << n.verdict_text;
+  ASSERT_EQ(n.non_associative_trajectories.size(), 1u);
+  const auto& t = n.non_associative_trajectories[0];
+  int steps = 0;
+  for (std::size_t k = 1; k < n.non_associative.size(); ++k) steps += n.non_associative[k].interior_point_iterations;
+  EXPECT_EQ(t.step_iterations, steps);
+  ASSERT_GT(t.checks, 0);
+  EXPECT_GE(t.test_iterations, t.checks) << "every test is a solve of at least one iteration";
+}
+// A run stopped during a step (here cancelled from the progress callback, as the time limit
+// would) reports no value, and says so; its record keeps the last completed step's value, not the
+// associative one it started from.
+TEST(NonAssociative, AStoppedRunReportsNoValueAndSaysSo) {
+  json model = at_defaults(finish(running_bond_blocks(8, 10), Case{}));
+  model["analysis"]["check_dead_load"] = false;  // no solve before the associative one
+  const auto full = run(model);
+  ASSERT_GE(full.non_associative.size(), 3u) << "the cancellation below falls in step 2";
+  // The callback runs once per iteration of each solve: the associative solve, step 1, then step 2.
+  const int cancel_after = full.non_associative[0].interior_point_iterations +
+                           full.non_associative[1].interior_point_iterations + 2;
+  int iterations = 0;
+  analysis::AnalysisOptions options;
+  options.progress = [&](const conic::IterationRow&) { return ++iterations < cancel_after; };
+  const auto n = analysis::analyse(io::load_model_text(model.dump()).model, options);
+  ASSERT_EQ(n.verdict, Verdict::Cancelled) << n.verdict_text;
+  ASSERT_EQ(n.non_associative_trajectories.size(), 1u);
+  ASSERT_EQ(n.non_associative.size(), 2u) << "the associative solve and step 1";
+  EXPECT_EQ(n.non_associative_trajectories[0].value, n.non_associative[1].value);
+  EXPECT_NE(n.non_associative_trajectories[0].value, n.non_associative[0].value);
+  const auto failed = std::find_if(n.warnings.begin(), n.warnings.end(),
+                                   [](const auto& w) { return w.code == "non_associative_step_failed"; });
+  ASSERT_NE(failed, n.warnings.end());
+  EXPECT_NE(failed->message.find("no value is reported"), std::string::npos) << failed->message;
+}
 
 // With several runs (analysis.non_associative.trajectories) the reported state is the
 // conservative certified one: no certified run found a lower alpha (settlement: a higher R); the

@@ -121,6 +121,10 @@ struct NonAssociativeTrajectory {
   int steps = 0;
   int checks = 0;
   double seconds = 0.0;  ///< of the run's conic solves
+  int step_iterations = 0;  ///< interior-point iterations of the steps' solves
+  /// of the other solves: the selections of the conservative state, the fixed-point tests and
+  /// the range (the associative solve before the run is in neither)
+  int test_iterations = 0;
 };
 
 /// What a Sensitivities record differentiates.

@@ -155,6 +155,14 @@ class ShiftScheme {
 
   ~ShiftScheme() { solver_.update_c(cost_); }
 
+  /// Interior-point iterations of the run's solves: its steps, and the rest (the selections of
+  /// the conservative state, the fixed-point tests and the range).
+  struct Iterations {
+    int steps = 0;
+    int tests = 0;
+  };
+  Iterations iterations() const { return iterations_; }
+
   void run(const conic::Solution& associative, double& value) {
     Eigen::VectorXd shift = to_vector(slip_shift(m_, f_, associative.y));
     normals_ = normal_forces(m_, f_, f_.point_forces(associative.x));
@@ -254,15 +262,19 @@ class ShiftScheme {
     const auto start = Clock::now();
     out = solver_.solve();
     result_.solve_seconds += seconds_since(start);
+    (step > 0 ? iterations_.steps : iterations_.tests) += out.info.iterations;
     s = saved;
     if (!out.snapshot.empty()) snapshot_ = out.snapshot;
     if (conic::has_solution(out.info.status)) return true;
-    result_.warnings.push_back({"non_associative_step_failed",
-                                "non-associative step " + std::to_string(step) + " ended with " +
-                                    conic::to_string(out.info.status) + "; the last completed step is reported",
-                                ""});
     if (out.info.status == conic::SolveStatus::TimeLimit) result_.verdict = Verdict::TimeLimit;
     if (out.info.status == conic::SolveStatus::Cancelled) result_.verdict = Verdict::Cancelled;
+    const std::string what = step > 0 ? "non-associative step " + std::to_string(step)
+                                      : std::string("a selection solve of the non-associative scheme");
+    const std::string outcome = result_.verdict == Verdict::TimeLimit || result_.verdict == Verdict::Cancelled
+                                    ? "; the analysis stopped and no value is reported"
+                                    : "; the last completed step is reported";
+    result_.warnings.push_back(
+        {"non_associative_step_failed", what + " ended with " + conic::to_string(out.info.status) + outcome, ""});
     result_.non_associative_stop = std::string("a step ended with ") + conic::to_string(out.info.status);
     return false;
   }
@@ -335,6 +347,7 @@ class ShiftScheme {
     const auto solve_start = Clock::now();
     const conic::Solution capped = cylinder_solver_->solve();
     result_.solve_seconds += seconds_since(solve_start);
+    iterations_.tests += capped.info.iterations;
     ++result_.non_associative_checks;
     if (!conic::has_solution(capped.info.status)) return false;
     const double v_state = multiplier_value(f_, state.x), v_capped = multiplier_value(cylinder_, capped.x);
@@ -351,7 +364,11 @@ class ShiftScheme {
   }
 
   void report(double& value) {
-    if (result_.verdict == Verdict::TimeLimit || result_.verdict == Verdict::Cancelled) return;
+    if (result_.verdict == Verdict::TimeLimit || result_.verdict == Verdict::Cancelled) {
+      // Nothing is reported; the run's record keeps the last completed step's value.
+      if (last_step_.x.size() > 0) value = multiplier_value(f_, last_step_.x);
+      return;
+    }
     const Candidate& c = candidate_;
     value = multiplier_value(f_, c.state.x);
     conic::Solution other;
@@ -417,6 +434,7 @@ class ShiftScheme {
   std::unique_ptr<conic::ConicSolver> cylinder_solver_;
   Eigen::VectorXd capped_mechanism_;  ///< of the last test, in the associative formulation's rows
   std::vector<int> capped_arbitrary_blocks_;  ///< of the last test (settle_unloaded_blocks)
+  Iterations iterations_;
 };
 
 }  // namespace
@@ -482,15 +500,21 @@ void run_non_associative(const model::Model& m, const Formulation& formulation, 
   for (int k = 0; k < runs; ++k) {
     AnalysisResult run = before;
     double run_value = value;
+    NonAssociativeTrajectory t;
     {
       ShiftScheme scheme(m, formulation, solver, deadline, kSchedules[k], run);
       scheme.run(associative, run_value);
+      t.step_iterations = scheme.iterations().steps;
+      t.test_iterations = scheme.iterations().tests;
     }
     solve_seconds += run.solve_seconds - before.solve_seconds;
     assemble_seconds += run.assemble_seconds - before.assemble_seconds;
-    const NonAssociativeTrajectory t{kSchedules[k], run_value, run.non_associative_converged,
-                                     static_cast<int>(run.non_associative.size()) - 1, run.non_associative_checks,
-                                     run.solve_seconds - before.solve_seconds};
+    t.schedule = kSchedules[k];
+    t.value = run_value;
+    t.converged = run.non_associative_converged;
+    t.steps = static_cast<int>(run.non_associative.size()) - 1;
+    t.checks = run.non_associative_checks;
+    t.seconds = run.solve_seconds - before.solve_seconds;
     // A run the clock stopped is reported only when no earlier one finished.
     if (stopped(run) && k > 0) {
       result.warnings.push_back({"non_associative_trajectories_incomplete",

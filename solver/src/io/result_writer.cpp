@@ -86,7 +86,7 @@ json warning_summary_json(const std::vector<model::Warning>& warnings) {
 }
 
 json model_only_result(const model::Model& model, const model::StageTimings& timings, const std::string& source) {
-  json result{{"schema_version", "1.7.0"},
+  json result{{"schema_version", "1.8.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
               {"verdict", "Model read and checked; no analysis was run."},
@@ -238,7 +238,9 @@ void add_non_associative_convergence(const model::Model& model, const analysis::
                     {"reported", static_cast<int>(k) == result.non_associative_reported},
                     {"steps", t.steps},
                     {"checks", t.checks},
-                    {"seconds", t.seconds}});
+                    {"seconds", t.seconds},
+                    {"step_iterations", t.step_iterations},
+                    {"test_iterations", t.test_iterations}});
   }
   if (!runs.empty()) convergence["non_associative_trajectories"] = runs;
 }
