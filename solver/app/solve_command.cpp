@@ -41,7 +41,10 @@ int run_solve(const CommonOptions& options) {
   }
   report_warnings(result.warnings, options);
   if (result.solver_ran) {
-    progress(options, "solved in " + seconds_text(result.solve_seconds) + " (" +
+    const bool stopped = result.verdict == analysis::Verdict::TimeLimit ||
+                         result.verdict == analysis::Verdict::IterationLimit ||
+                         result.verdict == analysis::Verdict::Cancelled;
+    progress(options, std::string(stopped ? "stopped after " : "solved in ") + seconds_text(result.solve_seconds) + " (" +
                           std::to_string(result.solver_info.iterations) + " interior-point iterations" +
                           (result.non_associative.empty()
                                ? std::string()

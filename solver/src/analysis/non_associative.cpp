@@ -266,6 +266,9 @@ class ShiftScheme {
     s = saved;
     if (!out.snapshot.empty()) snapshot_ = out.snapshot;
     if (conic::has_solution(out.info.status)) return true;
+    // The result's solver record is of the last solve: this one, which did not finish.
+    result_.solver_info = out.info;
+    result_.interior_point_history = out.info.history;
     if (out.info.status == conic::SolveStatus::TimeLimit) result_.verdict = Verdict::TimeLimit;
     if (out.info.status == conic::SolveStatus::Cancelled) result_.verdict = Verdict::Cancelled;
     const std::string what = step > 0 ? "non-associative step " + std::to_string(step)
