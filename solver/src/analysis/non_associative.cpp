@@ -278,7 +278,12 @@ class ShiftScheme {
                                     : "; the last completed step is reported";
     result_.warnings.push_back(
         {"non_associative_step_failed", what + " ended with " + conic::to_string(out.info.status) + outcome, ""});
-    result_.non_associative_stop = std::string("a step ended with ") + conic::to_string(out.info.status);
+    // A failed step ends the run; a failed selection only loses that selection (certify keeps the
+    // step's own state), unless the clock stopped it.
+    if (step > 0 || result_.verdict == Verdict::TimeLimit || result_.verdict == Verdict::Cancelled) {
+      result_.non_associative_stop =
+          std::string(step > 0 ? "a step" : "a selection solve") + " ended with " + conic::to_string(out.info.status);
+    }
     return false;
   }
 
