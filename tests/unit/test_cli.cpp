@@ -156,7 +156,7 @@ TEST_F(Cli, CannotStandIsAnAnswerNotAnError) {
   }
   const auto r = run("solve " + write("m.json", model) + " -o " + path("result.json"));
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("Cannot stand: block 'B1' touches nothing"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Cannot stand as modelled: block 'B1' touches nothing"), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, DumpProblemWritesAnMpsForThePlanarLp) {

@@ -45,12 +45,16 @@ bool carries_dead_load(const model::Model& m, const std::vector<int>& blocks) {
 
 /// The near misses of interface detection, when there were any: joints a looser tolerance would
 /// have found, which is what a user whose blocks hang in the air looks for first.
+/// The near misses of interface detection. At the unsupported blocks they point to joints the
+/// geometry misses (faces that cross or gape beyond the tolerances) rather than to a structure that
+/// falls, and the sentence says so.
 std::string near_miss_text(const Connectivity& connectivity) {
   if (connectivity.num_near_misses == 0) return "";
   const std::size_t n = connectivity.num_near_misses, at = connectivity.near_misses_at_groups.size();
+  const std::string where = at > 0 ? ": probably joints the geometry misses, not a collapse; see " : ": see ";
   return " Interface detection rejected " + std::to_string(n) + (n == 1 ? " face pair" : " face pairs") +
-         " that came close (near misses), " + std::to_string(at) + " of them at these blocks: see " +
-         "connectivity.near_misses in the result.";
+         " that came close (near misses), " + std::to_string(at) + " of them at these blocks" + where +
+         "connectivity.near_misses in the result and the tolerances under /detection.";
 }
 
 }  // namespace
@@ -124,10 +128,10 @@ std::string unsupported_verdict_text(const model::Model& m, const Connectivity& 
   std::sort(falling.begin(), falling.end());
   const std::size_t n = falling.size();
   if (n == 1 && alone.size() == 1) {
-    return "Cannot stand: block '" + m.blocks[falling.front()].id +
+    return "Cannot stand as modelled: block '" + m.blocks[falling.front()].id +
            "' touches nothing, so no interface joins it to a support." + near_miss_text(connectivity);
   }
-  std::string text = "Cannot stand: " + std::to_string(n) + (n == 1 ? " block is" : " blocks are") +
+  std::string text = "Cannot stand as modelled: " + std::to_string(n) + (n == 1 ? " block is" : " blocks are") +
                      " not connected to any support by interfaces: " + quoted_block_ids(m, falling, 10);
   const std::size_t joined = groups - alone.size();
   std::string parts;
