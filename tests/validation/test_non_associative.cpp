@@ -186,7 +186,6 @@ TEST(NonAssociative, StoppedEarlySaysSoAndStaysAdmissible) {
       << n.verdict_text;
 }
 
-
 // At the step limit the last step is tested, and the verdict follows the test: certified exactly
 // when the capped problem carries no more than the state (the gap within the tolerance), whether
 // or not the schedule had tested that step. A run that reaches its limit with a passing state is
@@ -213,6 +212,7 @@ TEST(NonAssociative, TheLastStepAtTheLimitIsCertifiedWhenItPasses) {
   EXPECT_GT(passed_at_limit, 0);
   EXPECT_GT(failed_at_limit, 0);
 }
+
 // The circumscribed pyramid lets shear exceed mu N (up to mu N / cos(pi/4) with four faces): the
 // state certified is one of that friction law, and a warning says so; the inscribed one does not.
 TEST(NonAssociative, TheCircumscribedPyramidIsNamedAsAnotherFrictionLaw) {
@@ -230,6 +230,7 @@ TEST(NonAssociative, TheCircumscribedPyramidIsNamedAsAnotherFrictionLaw) {
     if (warned != n.warnings.end()) EXPECT_NE(warned->message.find("1.41 mu N"), std::string::npos) << warned->message;
   }
 }
+
 // Each run counts the interior-point iterations of its steps (the history's, step 0 being the
 // associative solve before the run) and of its other solves: at least one fixed-point test ran.
 TEST(NonAssociative, ARunCountsTheIterationsOfEverySolve) {
@@ -243,6 +244,7 @@ TEST(NonAssociative, ARunCountsTheIterationsOfEverySolve) {
   ASSERT_GT(t.checks, 0);
   EXPECT_GE(t.test_iterations, t.checks) << "every test is a solve of at least one iteration";
 }
+
 // A run stopped during a step (here cancelled from the progress callback, as the time limit
 // would) reports no value, and says so; its record keeps the last completed step's value, not the
 // associative one it started from.
