@@ -174,7 +174,7 @@ class ShiftScheme {
       result_.non_associative_stop = "no contact point slides in the associative mechanism";
       return;
     }
-    int last_check = 0;
+    int last_check = 0, last_step_number = 0;
     for (int step = 1; step <= request_.non_associative_max_iterations; ++step) {
       conic::Solution next;
       if (!solve(shifted_cost(m_, f_, cost_, shift, 1.0), kStepGap, next, step)) break;
@@ -199,6 +199,7 @@ class ShiftScheme {
       }
       last_step_ = std::move(next);
       last_shift_ = shift;
+      last_step_number = step;
       if (last_check == step && capped_mechanism_.size() > 0) {
         // A failed test: the capped problem's mechanism does not dilate at all, and its slip
         // rates are a better next shift than the step's own (on the 1920-block facade the test's
@@ -214,9 +215,10 @@ class ShiftScheme {
       if (result_.non_associative_stop.empty()) {
         result_.non_associative_stop = "the step limit (analysis.non_associative.max_iterations) was reached";
       }
-      // The last step may not have been tested on the schedule. A pass certifies it like any other
-      // state: the test does not depend on how the state was reached.
-      if (certify(last_step_, last_shift_)) {
+      // The last step, unless the schedule has just tested it (and it failed: the candidate is
+      // that test's), is tested now. A pass certifies it like any other state: the test does not
+      // depend on how the state was reached.
+      if (last_check != last_step_number && certify(last_step_, last_shift_)) {
         result_.non_associative_converged = true;
         result_.non_associative_stop += "; the last step's state passed the fixed-point test";
       }
