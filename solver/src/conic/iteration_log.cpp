@@ -36,13 +36,15 @@ void print_row(std::ostream& out, const IterationRow& r) {
 void print_footer(std::ostream& out, const Info& info, long solves, long multiplies) {
   char line[512];
   std::snprintf(line, sizeof line,
-                "status: %s%s%s\niterations %d, primal %.12g, dual %.12g\n"
+                "status: %s%s%s\niterations %d from the %s point, primal %.12g, dual %.12g\n"
                 "time [s]: setup %.3f (symbolic %.3f), assembly %.3f, factor %.3f, solve %.3f, "
                 "total %.3f; refactor retries %d\n"
                 "solves with the factor %ld, products with M %ld, centrality correctors %d "
                 "(%d kept)\n",
                 to_string(info.status), info.failure_reason.empty() ? "" : " - ",
-                info.failure_reason.c_str(), info.iterations, info.primal_objective,
+                info.failure_reason.c_str(), info.iterations,
+                info.warm_started ? "warm-start" : info.least_squares_start ? "least-squares" : "unit",
+                info.primal_objective,
                 info.dual_objective, info.setup_seconds, info.symbolic_seconds,
                 info.assembly_seconds, info.factor_seconds, info.solve_seconds,
                 info.total_seconds, info.num_refactor_retries, solves, multiplies,
