@@ -393,6 +393,8 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
   const auto solve_start = Clock::now();
   conic::Settings settings = solver_settings(request, options, deadline.left());
   if (options.warm_start) settings.snapshot_gap_rel = kSearchSnapshotGap;
+  if (request.friction_model == model::FrictionModel::NonAssociative && request.non_associative_warm_start)
+    settings.snapshot_gap_rel = kNonAssociativeSnapshotGap;
   SolverReuse own;
   conic::ConicSolver& solver = (options.reuse ? *options.reuse : own).solver_for(formulation.problem, settings);
   solver.set_progress_callback(options.progress);

@@ -50,8 +50,13 @@
 
 namespace rbla::analysis {
 
+/// The relative gap at which a solve keeps its iterate to warm-start the scheme's next solve
+/// (Gondzio & Grothey 2008): the associative solve that precedes the scheme keeps one too.
+inline constexpr double kNonAssociativeSnapshotGap = 1e-2;
+
 /// Runs the scheme from the associative solution `associative` of `formulation`, solved by
-/// `solver` (reused: only its cost changes; restored before returning). On return `value` is the
+/// `solver` (reused: only its cost changes; restored before returning), each run's first step
+/// warm-started from `associative.snapshot` when there is one. On return `value` is the
 /// non-associative alpha (or base reaction, kN) and `result` holds its state, mechanism, history,
 /// range and warnings, those of the run reported when several ran (all runs' values are in
 /// result.non_associative_trajectories); when no step completes, `value` and the associative state
