@@ -47,6 +47,20 @@ TEST(ThresholdSearch, ValuesFindTheCrossingOfACurvedFunctionFastAndBracketIt) {
   EXPECT_LE(smooth.samples.size(), 15u);
 }
 
+TEST(ThresholdSearch, APlateauJustAboveTheTargetDoesNotStallTheChord) {
+  // A column's load multiplier min(mu, b/H), mu = 0.6 x and b/H = 0.125, against targets just
+  // below that plateau: at the passing end g is flat and tiny, so the chord points at that end
+  // and, without the bisection guard, crept by 4e-4 of x per sample to the 40-sample cap.
+  for (const double target : {0.124999, 0.1249999, 0.125 - 1e-12}) {
+    ThresholdSettings settings;
+    const auto t = find_threshold([&](double x) { return with_value(x, std::min(0.6 * x, 0.125) - target); }, settings);
+    ASSERT_TRUE(t.converged) << target << ": " << t.stop;
+    EXPECT_LE(0.6 * *t.lower, target);
+    EXPECT_GE(0.6 * *t.upper, target);
+    EXPECT_LE(t.samples.size(), 20u) << target;
+  }
+}
+
 TEST(ThresholdSearch, WithoutValuesItBisects) {
   ThresholdSettings settings;
   settings.tolerance = 1e-3;

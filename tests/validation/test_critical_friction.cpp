@@ -82,6 +82,23 @@ TEST(CriticalFriction, NoFrictionReachesATargetAboveTheTippingLimit) {
   EXPECT_NE(c.verdict_text.find("No friction up to mu = 100"), std::string::npos) << c.verdict_text;
 }
 
+// The target at the tipping limit itself, as a user copies it from an analysis: alpha = min(mu,
+// 0.5) reaches 0.5 at mu = 0.5 and stays there, within the solver's last digits. The bracket
+// holds mu = 0.5 (it held 0.3125 to 0.3216 on a block whose limit is 0.3 before targets were
+// carried to 1e-6), and targets just below the limit take no more than 25 analyses.
+TEST(CriticalFriction, ATargetAtTheTippingLimitNeedsMuEqualToIt) {
+  Case s;
+  s.mu = 0.6;
+  for (const double target : {0.5, 0.5 - 1e-7, 0.49999}) {
+    const auto c = search(single_block(1.0, 2.0, s), target, 1e-3);
+    ASSERT_EQ(c.outcome, ThresholdOutcome::Bracketed) << c.verdict_text;
+    EXPECT_TRUE(c.certified) << c.stop;
+    EXPECT_LE(0.6 * *c.factor_lower, target) << target;
+    EXPECT_GE(0.6 * *c.factor_upper, target * (1.0 - 1e-6)) << target;
+    EXPECT_LE(c.evaluations.size(), 25u) << target;
+  }
+}
+
 /// The interface between two blocks, by their ids.
 int interface_between(const model::Model& m, const std::string& a, const std::string& b) {
   for (std::size_t k = 0; k < m.interfaces.size(); ++k) {
@@ -125,6 +142,29 @@ TEST(CriticalFriction, OnlyTheChosenJointIsScaled) {
   EXPECT_EQ(m.interfaces_named({}, {"top"}, unmatched), std::vector<int>{upper});
   EXPECT_EQ(m.interfaces_named({m.interfaces[bed].id, "nothing"}, {}, unmatched), std::vector<int>{bed});
   EXPECT_EQ(unmatched, std::vector<std::string>{"nothing"});
+}
+
+// A joint far above the others (a keyed joint at mu = 50) is held at the schema's limit of 100
+// while the others grow: the two blocks on the plane at 20 degrees with the bed joint at 0.15
+// need the factor tan(beta) / 0.15. Capping the factor at 100 / 50 stopped the bed at 0.3 and
+// reported that no friction is enough.
+TEST(CriticalFriction, ACoefficientAtTheLimitIsHeldWhileTheOthersGrow) {
+  const double beta = 20.0 * kPi / 180.0;
+  auto loaded = rbla::io::load_model_text(inclined_block(beta, 0.6, true).dump());
+  model::Model& m = loaded.model;
+  const int bed = interface_between(m, "base", "block"), upper = interface_between(m, "block", "top");
+  ASSERT_GE(bed, 0);
+  ASSERT_GE(upper, 0);
+  m.interfaces[bed].friction = 0.15;
+  m.interfaces[upper].friction = 50.0;
+  rbla::analysis::ThresholdSettings settings;
+  settings.tolerance = 1e-6;
+  const auto c = rbla::analysis::find_critical_friction(m, std::nullopt, {}, settings);
+  ASSERT_EQ(c.outcome, ThresholdOutcome::Bracketed) << c.verdict_text;
+  EXPECT_TRUE(c.certified) << c.stop;
+  EXPECT_LT(relative_error(*c.factor_upper, std::tan(beta) / 0.15), 2e-6);
+  EXPECT_EQ(c.model_at_critical.interfaces[upper].friction, 100.0);
+  EXPECT_NE(c.verdict_text.find("1 coefficient held at 100"), std::string::npos) << c.verdict_text;
 }
 
 TEST(CriticalFriction, AFlatStackStandsWithAnyFriction) {

@@ -13,8 +13,14 @@ namespace rbla::analysis {
 namespace {
 
 
-/// The schema's largest friction coefficient: the search does not scale beyond it.
+/// The schema's largest friction coefficient: a scaled coefficient is held there, so that the
+/// others can still grow (a keyed joint at mu = 50 would otherwise stop the bed joints at 0.3).
 constexpr double kLargestFriction = 100.0;
+/// A target counts as carried when alpha reaches it to this relative tolerance. The analyses are
+/// exact to about 1e-8, and a target copied from an analysis's printed multiplier lies on the
+/// plateau alpha reaches once friction no longer governs (rocking): there, pass or fail would
+/// follow the solver's last digits, and a bracket built on them would not be the critical one.
+constexpr double kCarriedTolerance = 1e-6;
 
 /// The interfaces to scale: `scaled`, or all of them when it is empty.
 std::vector<int> scaled_set(const model::Model& m, const std::vector<int>& scaled) {
@@ -49,7 +55,7 @@ std::optional<double> uniform_friction(const model::Model& m, const std::vector<
 /// Passes when the structure stands (alpha = 0 admissible) and, with a target, carries it.
 ThresholdSample as_sample(const AnalysisResult& r, std::optional<double> target) {
   ThresholdSample s;
-  const double goal = target.value_or(0.0);
+  const double goal = target ? *target - kCarriedTolerance * std::abs(*target) : 0.0;
   switch (r.verdict) {
     case Verdict::Collapse:
       s.value = *r.load_multiplier - goal;
@@ -72,7 +78,26 @@ ThresholdSample as_sample(const AnalysisResult& r, std::optional<double> target)
 }
 
 std::string asked(std::optional<double> target) {
-  return target ? "to carry alpha = " + format(*target) : std::string("to stand under its own weight");
+  return target ? "to carry alpha = " + format(*target, 10) : std::string("to stand under its own weight");
+}
+
+/// The largest load multiplier any evaluation carried, for a search that no friction satisfied.
+std::string largest_carried(const CriticalFriction& c) {
+  std::optional<double> largest;
+  for (const FrictionEvaluation& e : c.evaluations) {
+    if (e.load_multiplier && (!largest || *e.load_multiplier > *largest)) largest = e.load_multiplier;
+  }
+  return largest ? "; the largest alpha carried is " + format(*largest, 10) : "";
+}
+
+/// The scaled coefficient of interface k at `factor`: held at the schema's limit.
+double scaled_friction(double friction, double factor) { return std::min(friction * factor, kLargestFriction); }
+
+/// Says how many scaled coefficients the factor would take past the schema's limit (held there).
+std::string held(const CriticalFriction& c, double factor) {
+  int count_held = 0;
+  for (double mu : c.given_frictions) count_held += mu * factor > kLargestFriction ? 1 : 0;
+  return count_held == 0 ? "" : " (" + count(count_held, "coefficient", "coefficients") + " held at " + format(kLargestFriction) + ")";
 }
 
 void conclude(CriticalFriction& c, const Threshold& t, bool associative) {
@@ -88,8 +113,8 @@ void conclude(CriticalFriction& c, const Threshold& t, bool associative) {
                                         " chosen interface" + (c.scaled_interfaces.size() == 1 ? "" : "s");
   switch (t.outcome) {
     case ThresholdOutcome::Bracketed:
-      c.verdict_text = "The structure needs " + coefficients + " times " + format(*t.upper) + friction + " " +
-                       asked(c.target_alpha) + (c.certified ? "; certified" : "; not certified") + ": " + t.stop + ".";
+      c.verdict_text = "The structure needs " + coefficients + " times " + format(*t.upper) + friction + held(c, *t.upper) +
+                       " " + asked(c.target_alpha) + (c.certified ? "; certified" : "; not certified") + ": " + t.stop + ".";
       break;
     case ThresholdOutcome::PassesAtMinimum:
       c.verdict_text = "The structure manages " + asked(c.target_alpha) + " even with " + coefficients + " times " +
@@ -97,8 +122,9 @@ void conclude(CriticalFriction& c, const Threshold& t, bool associative) {
       break;
     case ThresholdOutcome::FailsAtMaximum:
       c.verdict_text = "No friction up to mu = " + format(kLargestFriction) +
-                       (c.scaled_interfaces.empty() ? "" : " at the chosen interfaces") + " is enough " +
-                       asked(c.target_alpha) + ": overturning or the geometry governs (" + t.stop + ").";
+                       (c.scaled_interfaces.empty() ? " at every interface" : " at the chosen interfaces") +
+                       " is enough " + asked(c.target_alpha) + ": overturning or the geometry governs (" + t.stop +
+                       largest_carried(c) + ").";
       break;
     case ThresholdOutcome::Failed:
       c.verdict_text = "The search stopped: " + t.stop;
@@ -117,9 +143,14 @@ CriticalFriction find_critical_friction(const model::Model& model, std::optional
   c.target_alpha = target_alpha;
   if (!scaled.empty()) c.scaled_interfaces = set;
   c.uniform_friction = uniform_friction(model, set);
-  double largest = 0.0;
-  for (int k : set) largest = std::max(largest, model.interfaces[k].friction);
-  settings.max_x = std::min(settings.max_x, kLargestFriction / largest);
+  // The range ends where every scaled coefficient has reached the schema's limit.
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int k : set) {
+    c.given_frictions.push_back(model.interfaces[k].friction);
+    if (model.interfaces[k].friction > 0.0) smallest = std::min(smallest, model.interfaces[k].friction);
+  }
+  settings.max_x = std::min(settings.max_x, kLargestFriction / smallest);
+  settings.name = "factor";
 
   double best_passing = std::numeric_limits<double>::infinity();
   // Each factor starts from the interior point of the nearest factor evaluated within a factor
@@ -131,7 +162,7 @@ CriticalFriction find_critical_friction(const model::Model& model, std::optional
     const Eigen::VectorXd where = Eigen::VectorXd::Constant(1, std::log(factor));
     const auto evaluation_start = Clock::now();
     model::Model at_factor = model;
-    for (int k : set) at_factor.interfaces[k].friction *= factor;
+    for (int k : set) at_factor.interfaces[k].friction = scaled_friction(at_factor.interfaces[k].friction, factor);
     at_factor.analysis.check_dead_load = true;  // standing is what every test asks first
     AnalysisResult result = analyses.analyse_at(at_factor, options, where);
     const ThresholdSample sample = as_sample(result, target_alpha);

@@ -3,11 +3,12 @@
 // s (docs/critical_friction.md).
 //
 // Why a bracket is certified: with associative friction, a larger s enlarges every scaled
-// friction cone and leaves the others as they are, and so enlarges the set of admissible contact
-// forces; whatever is carried at s is carried at any larger
-// s. "Stands" and "alpha >= target" are therefore monotone in s, every failing s is a lower and
-// every passing s an upper bound of the critical factor (analysis/threshold_search.hpp). With
-// non-associative friction this is not proven: the search runs the same way and says so.
+// friction cone (each coefficient min(s mu, 100), held at the schema's limit) and leaves the
+// others as they are, and so enlarges the set of admissible contact forces: whatever is carried
+// at s is carried at any larger s. "Stands" and "alpha >= target" (to 1e-6 relative) are
+// therefore monotone in s, every failing s is a lower and every passing s an upper bound of the
+// critical factor (analysis/threshold_search.hpp). With non-associative friction this is not
+// proven: the search runs the same way and says so.
 #pragma once
 
 #include "analysis/limit_analysis.hpp"
@@ -38,6 +39,9 @@ struct CriticalFriction {
   std::vector<int> scaled_interfaces;
   /// The coefficient the factor gives when every scaled interface had the same one; else empty.
   std::optional<double> uniform_friction;
+  /// The scaled interfaces' coefficients as given; at factor s each is min(s mu, 100), the
+  /// schema's limit.
+  std::vector<double> given_frictions;
   bool certified = false;  ///< bracketed within the tolerance, associative friction
   std::string stop;
   std::vector<FrictionEvaluation> evaluations;  ///< in the order they ran

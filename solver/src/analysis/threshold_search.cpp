@@ -14,16 +14,26 @@ struct Bracket {
   int kept_lo = 0, kept_hi = 0;  ///< how many steps in a row each end stayed
 };
 
+/// The bisection point; over a wide bracket, halve the ratio rather than the difference.
+double middle(const Bracket& b) { return b.hi > 4.0 * b.lo ? std::sqrt(b.lo * b.hi) : 0.5 * (b.lo + b.hi); }
+
+/// The next x, and whether the chord's zero was moved in from next to an end (+1 the upper end,
+/// -1 the lower one).
+struct Chord {
+  double x = 0.0;
+  int clamped_at = 0;
+};
+
 /// The chord's zero, kept at least `step` inside the bracket: the end the chord converges to is
 /// then crossed once the root is that close, which closes the bracket (as Dekker's and Brent's
 /// methods take at least a tolerance-sized step).
-double next_x(const Bracket& b, double step) {
-  // Over a wide bracket, halve the ratio rather than the difference.
-  const double middle = b.hi > 4.0 * b.lo ? std::sqrt(b.lo * b.hi) : 0.5 * (b.lo + b.hi);
-  if (!b.g_lo || !b.g_hi || !std::isfinite(*b.g_lo) || !std::isfinite(*b.g_hi) || *b.g_hi <= *b.g_lo) return middle;
+Chord next_x(const Bracket& b, double step) {
+  if (!b.g_lo || !b.g_hi || !std::isfinite(*b.g_lo) || !std::isfinite(*b.g_hi) || *b.g_hi <= *b.g_lo) return {middle(b), 0};
   const double x = b.lo + (b.hi - b.lo) * (-*b.g_lo) / (*b.g_hi - *b.g_lo);
-  if (!std::isfinite(x) || b.hi - b.lo <= 2.0 * step) return middle;
-  return std::clamp(x, b.lo + step, b.hi - step);
+  if (!std::isfinite(x) || b.hi - b.lo <= 2.0 * step) return {middle(b), 0};
+  if (x > b.hi - step) return {b.hi - step, +1};
+  if (x < b.lo + step) return {b.lo + step, -1};
+  return {x, 0};
 }
 
 void update(Bracket& b, const ThresholdSample& s) {
@@ -69,8 +79,8 @@ Threshold find_threshold(const std::function<ThresholdSample(double x)>& evaluat
   if (far != x && !take(far)) return out;
   if (out.samples.back().passes == first_passes) {
     out.outcome = first_passes ? ThresholdOutcome::PassesAtMinimum : ThresholdOutcome::FailsAtMaximum;
-    out.stop = first_passes ? "passes at every value tried, down to " + format(far)
-                            : "fails at every value tried, up to " + format(far);
+    out.stop = (first_passes ? "passes at every " + settings.name + " tried, down to "
+                             : "fails at every " + settings.name + " tried, up to ") + format(far);
     return out;
   }
   for (;;) {
@@ -94,13 +104,21 @@ Threshold find_threshold(const std::function<ThresholdSample(double x)>& evaluat
     if (s.x == b.hi) b.g_hi = s.value;
   }
   out.outcome = ThresholdOutcome::Bracketed;
+  // A chord step clamped next to an end is meant to cross the root; when it does not, the chord
+  // points at that end for another reason (g flat there): bisect until a sample lands on the
+  // other side of the root (+1: until one passes, -1: until one fails).
+  int bisect_until = 0;
   while (b.hi - b.lo > settings.tolerance * b.hi) {
     if (out_of_samples()) {
       out.stop = "stopped at " + std::to_string(settings.max_samples) + " evaluations with the bracket [" +
                  format(b.lo) + ", " + format(b.hi) + "]";
       return out;
     }
-    if (!take(next_x(b, 0.4 * settings.tolerance * b.hi))) return out;
+    const Chord chord = bisect_until != 0 ? Chord{middle(b), 0} : next_x(b, 0.4 * settings.tolerance * b.hi);
+    if (!take(chord.x)) return out;
+    const int side = out.samples.back().passes ? +1 : -1;
+    if (side == bisect_until) bisect_until = 0;
+    if (chord.clamped_at == side) bisect_until = -side;
     update(b, out.samples.back());
   }
   out.converged = true;

@@ -7,7 +7,11 @@
 // value g(x) that crosses zero at x* (pass <=> g >= 0), the next x is where the chord between the
 // bracket's ends crosses zero, with the Illinois modification (Dowell & Jarratt, BIT 11 (1971)
 // 168-174: halve the value kept at an end retained twice) so that both ends move; otherwise, and
-// whenever a value is missing, bisection.
+// whenever a value is missing, bisection. The chord's zero is kept a small step inside the bracket
+// (as Dekker's and Brent's methods step at least a tolerance), so that a zero next to an end
+// crosses the root; when it does not cross, g is flat at that end (a load multiplier on a plateau
+// just above the target) and the chord would creep by that small step: the search bisects until
+// a sample lands on the other side of the root.
 #pragma once
 
 #include <functional>
@@ -33,6 +37,8 @@ struct ThresholdSettings {
   double min_x = 1e-4;      ///< below this a passing test is reported as passing everywhere tried
   double max_x = 1e3;       ///< above this a failing test is reported as failing everywhere tried
   int max_samples = 40;
+  /// What x is, in the stop messages ("fails at every factor tried, up to 2").
+  std::string name = "value";
 };
 
 enum class ThresholdOutcome {
