@@ -142,7 +142,7 @@ int collect_sweep(const SweepOptions& sweep, const model::Model& m,
   std::map<std::string, int> counts;
   for (const auto& point : points) {
     rows.push_back(io::read_sweep_row(
-        (std::filesystem::path(sweep.out_dir) / io::point_file_name(point.index)).string(), point));
+        (std::filesystem::path(sweep.out_dir) / io::point_file_name(point.index)).string(), axes, point));
     ++counts[rows.back().status];
   }
   const std::string value_name =
@@ -155,6 +155,11 @@ int collect_sweep(const SweepOptions& sweep, const model::Model& m,
   for (const auto& [status, n] : counts) line += " " + std::to_string(n) + " " + status + ",";
   line.back() = ';';
   std::cout << shown(line + " wrote " + (dir / "summary.csv").string() + " and " + (dir / "sweep.svg").string()) << "\n";
+  if (counts.count("mismatched") > 0) {
+    std::cerr << "rbla: " << counts["mismatched"] << " point file(s) in " << dir.string()
+              << " hold other parameters than this sweep's points (left by another sweep?): their values are not "
+                 "used; run their tasks again, or use a new --out\n";
+  }
   const bool complete = counts.size() == counts.count("collapse") + counts.count("no_mechanism") + counts.count("cannot_stand");
   return complete ? kSuccess : kSolverFailure;
 }

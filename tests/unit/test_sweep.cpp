@@ -76,6 +76,13 @@ TEST(Sweep, ParametersThatDoNotApplyAreRefusedBeforeAnythingRuns) {
   EXPECT_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::SettlementTilt, 0, 10, 3}}), rbla::model::ModelError);
   EXPECT_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::Friction, 0.0, 0.5, 3}}), rbla::model::ModelError);
   EXPECT_NO_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::Friction, 0.1, 0.5, 3}}));
+  EXPECT_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::UnitWeightFactor, 0.0, 1.0, 2}}), rbla::model::ModelError);
+  // A forced planar formulation cannot follow a load turned out of its plane: refused before the
+  // first point runs (it failed at the second point, without a summary).
+  auto planar = m;
+  planar.analysis.formulation = rbla::model::Formulation::Planar;
+  EXPECT_THROW(rbla::analysis::check_sweep(planar, {{SweepParameter::SeismicAngle, 0, 90, 3}}), rbla::model::ModelError);
+  EXPECT_NO_THROW(rbla::analysis::check_sweep(planar, {{SweepParameter::Friction, 0.1, 0.5, 3}}));
   EXPECT_THROW(rbla::io::parse_sweep_axis("friction=0.1:0.5", true, "--grid"), rbla::model::ModelError);
   EXPECT_THROW(rbla::io::parse_sweep_axis("mu=0.1:0.5:3", true, "--grid"), rbla::model::ModelError);
   EXPECT_THROW(rbla::io::parse_sweep_axis("friction=0.1:x:3", true, "--grid"), rbla::model::ModelError);
@@ -146,6 +153,27 @@ TEST(Sweep, CollectListsMissingPointsAndFails) {
   const auto r = rbla::testing::run_rbla("sweep -q " + model + " --out " + dir.string() + " --grid friction=0.2:0.8:3 --collect");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("3 missing"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
+// Another sweep's point files left in --out are not taken for this sweep's: the points of seed 8
+// whose files come from seed 7 are listed as mismatched, without a value (they had seed 7's
+// values under seed 8's parameters).
+TEST(Sweep, CollectRefusesPointFilesOfAnotherSweep) {
+  const fs::path dir = fs::temp_directory_path() / ("rbla_sweep_stale_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string model = std::string(RBLA_SOURCE_DIR) + "/samples/block.json";
+  const std::string sweep = "sweep -q " + model + " --out " + dir.string() + " --random friction=0.1:0.5 --samples 4";
+  auto r = rbla::testing::run_rbla(sweep + " --seed 7");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = rbla::testing::run_rbla(sweep + " --seed 8 --task 0 --tasks 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = rbla::testing::run_rbla(sweep + " --seed 8 --collect");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("2 collapse"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("2 mismatched"), std::string::npos) << r.output;
+  const std::string csv = read(dir / "summary.csv");
+  EXPECT_NE(csv.find(",mismatched,,"), std::string::npos) << csv;
   fs::remove_all(dir);
 }
 

@@ -115,7 +115,7 @@ model::Model model_at(const model::Model& model, const std::vector<SweepAxis>& a
       case SweepParameter::Friction:
       case SweepParameter::FrictionFactor: set_friction(m, parameter, value); break;
       case SweepParameter::UnitWeightFactor:
-        require(value >= 0.0, parameter, "must not be negative");
+        require(value > 0.0, parameter, "must be positive (at 0 every block is weightless: nothing to carry)");
         for (auto& block : m.blocks) block.unit_weight *= value;
         break;
       case SweepParameter::SeismicAngle: {
@@ -145,6 +145,18 @@ void check_sweep(const model::Model& model, const std::vector<SweepAxis>& axes) 
   for (const SweepAxis& axis : axes) {
     require(std::isfinite(axis.low) && std::isfinite(axis.high), axis.parameter, "needs finite bounds");
     require(axis.count >= 1, axis.parameter, "needs at least one value");
+  }
+  // A forced planar formulation holds only for loads in its plane; turning them would fail at
+  // the first point out of it, after the points before had run.
+  for (const SweepAxis& axis : axes) {
+    const bool turns_the_load = axis.parameter == SweepParameter::SeismicAngle ||
+                                axis.parameter == SweepParameter::SettlementTilt ||
+                                axis.parameter == SweepParameter::SettlementAzimuth;
+    if (turns_the_load && model.analysis.formulation == model::Formulation::Planar) {
+      throw model::ModelError("/analysis/formulation",
+                              std::string("is planar, and the sweep's ") + to_string(axis.parameter) +
+                                  " turns the load out of the plane: set it to auto (planar where the load is in plane) or 3d");
+    }
   }
   for (int end = 0; end < 2; ++end) {
     SweepPoint corner;

@@ -106,7 +106,23 @@ json sweep_point_json(const std::vector<analysis::SweepAxis>& axes, const analys
   return json{{"index", point.index}, {"parameters", parameters}};
 }
 
-SweepRow read_sweep_row(const std::string& path, const analysis::SweepPoint& point) {
+/// Whether a point file's sweep_point section is this point's: the same index and the same
+/// parameter values (written with 17 digits, so read back exactly). A file left by an earlier
+/// sweep in the same folder would otherwise lend its value to another point.
+bool is_this_point(const json& result, const std::vector<analysis::SweepAxis>& axes, const analysis::SweepPoint& point) {
+  const auto section = result.find("sweep_point");
+  if (section == result.end() || !section->is_object() || section->value("index", -1) != point.index) return false;
+  const auto parameters = section->find("parameters");
+  if (parameters == section->end() || !parameters->is_object() || parameters->size() != axes.size()) return false;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const auto value = parameters->find(analysis::to_string(axes[a].parameter));
+    if (value == parameters->end() || !value->is_number() || value->get<double>() != point.values[a]) return false;
+  }
+  return true;
+}
+
+SweepRow read_sweep_row(const std::string& path, const std::vector<analysis::SweepAxis>& axes,
+                        const analysis::SweepPoint& point) {
   SweepRow row;
   row.point = point;
   std::ifstream in(path, std::ios::binary | std::ios::ate);
@@ -116,6 +132,10 @@ SweepRow read_sweep_row(const std::string& path, const analysis::SweepPoint& poi
   in.seekg(0);
   const json result = json::parse(in, nullptr, false);
   if (result.is_discarded() || !result.is_object() || !result.contains("status")) return row;
+  if (!is_this_point(result, axes, point)) {
+    row.status = "mismatched";
+    return row;
+  }
   row.status = result.value("status", std::string("unreadable"));
   if (result.contains("load_multiplier") && result["load_multiplier"].is_number()) {
     row.value = result["load_multiplier"].get<double>();

@@ -25,11 +25,14 @@ nlohmann::json sweep_point_json(const std::vector<analysis::SweepAxis>& axes, co
 /// One row of the summary, read back from a point's result file.
 struct SweepRow {
   analysis::SweepPoint point;
-  std::string status = "missing";  ///< the result's status, "missing" or "unreadable"
+  /// The result's status; "missing", "unreadable", or "mismatched" (the file is another
+  /// sweep's: its sweep_point differs from this point)
+  std::string status = "missing";
   std::optional<double> value;     ///< load_multiplier, or base_reaction.at_collapse (model units)
   double seconds = 0.0;            ///< the point's total run time
 };
-SweepRow read_sweep_row(const std::string& path, const analysis::SweepPoint& point);
+SweepRow read_sweep_row(const std::string& path, const std::vector<analysis::SweepAxis>& axes,
+                        const analysis::SweepPoint& point);
 
 /// index, one column per parameter, status, value, seconds.
 std::string sweep_csv(const std::vector<analysis::SweepAxis>& axes, const std::vector<SweepRow>& rows,
