@@ -180,6 +180,10 @@ struct DetectionSummary {
   Spread gaps;                       ///< m, largest plane-to-plane distance over each accepted joint
   Spread angles;                     ///< degrees, deviation from opposite of each accepted joint
   double largest_gap_fraction = 0.0; ///< the largest gap of an accepted joint over its tolerance
+  /// Accepted joints whose gap is above half their tolerance, and the widest of them (m; -1: none).
+  std::size_t wide_gap_joints = 0;
+  double widest_gap = 0.0, widest_gap_tolerance = 0.0;
+  int widest_gap_block_a = -1, widest_gap_block_b = -1;
   std::size_t candidate_block_pairs = 0;
   std::size_t face_pairs_tested = 0;
   std::size_t merged_faces = 0;      ///< faces merged into a neighbouring coplanar face of their block
