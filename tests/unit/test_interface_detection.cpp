@@ -69,6 +69,32 @@ TEST(InterfaceDetection, StackedBoxes) {
   }
 }
 
+// A block drawn clear of two walls on its sides: glued to them it is clamped and carries any
+// horizontal load, so a gap above half the joint tolerance (3 % of the 2.2 m side face: 6.7 cm)
+// is said, with the widest; a millimetre of CAD gap is not.
+TEST(InterfaceDetection, AJointClosedAcrossAWideGapIsSaid) {
+  auto channel = [](double gap) {
+    return load(model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"),
+                                        box_block("wall_left", -1, -1 - gap, 0, 2, -gap, 2, "fixed"),
+                                        box_block("wall_right", -1, 1 + gap, 0, 2, 2 + gap, 2, "fixed"),
+                                        box_block("B", 0, 0, 0, 0.6, 1, 2)})));
+  };
+  auto wide_gap_warning = [](const Model& m) {
+    return std::find_if(m.warnings.begin(), m.warnings.end(),
+                        [](const auto& w) { return w.code == "joints_closed_across_gaps"; });
+  };
+  const Model wide = channel(0.05);
+  ASSERT_EQ(wide.interfaces.size(), 3u) << "the bed joint and both side joints";
+  const auto said = wide_gap_warning(wide);
+  ASSERT_NE(said, wide.warnings.end());
+  EXPECT_NE(said->message.find("2 detected joints"), std::string::npos) << said->message;
+  EXPECT_NEAR(said->magnitude, 0.05, 1e-9);
+  EXPECT_EQ(wide.detection_summary.wide_gap_joints, 2u);
+  const Model narrow = channel(0.001);
+  EXPECT_EQ(narrow.interfaces.size(), 3u);
+  EXPECT_EQ(wide_gap_warning(narrow), narrow.warnings.end());
+}
+
 TEST(InterfaceDetection, RunningBondOverlap) {
   // One block resting on two half-offset blocks: two interfaces of area 0.5 each, plus the head
   // joint between the two lower blocks and their two base contacts.
