@@ -107,15 +107,34 @@ int exit_code_of(analysis::Verdict verdict) {
 }
 
 void add_input_limits(CLI::App* command, io::InputLimits& limits) {
+  // An unsigned option would take "-1" as 2^64 - 1: no limit at all.
+  const CLI::Validator not_negative(
+      [](std::string& text) { return text.find('-') == std::string::npos ? std::string() : "must be positive"; },
+      "POSITIVE");
   for (const io::InputLimitInfo& info : io::kInputLimits) {
     std::uint64_t& value = limits.*info.field;
     CLI::Option* option = command->add_option(info.option, value, std::string("Refuse a model with more ") +
                                                                       info.counts + " than this")
                               ->default_val(value)
-                              ->group("Input limits");
+                              ->group("Input limits")
+                              ->check(not_negative);
     if (info.field == &io::InputLimits::max_bytes) option->transform(CLI::AsSizeValue(false));
     option->check(CLI::Range(std::uint64_t{1}, info.ceiling));
   }
+}
+
+std::string refused_option_value(const CLI::App& command) {
+  for (const CLI::Option* option : command.get_options()) {
+    if (!option->nonpositional() || option->count() == 0 || option->get_type_size() == 0) continue;
+    for (const std::string& value : option->results()) {
+      std::string word = value;
+      if (!word.empty() && (word[0] == '+' || word[0] == '-')) word.erase(0, 1);
+      std::transform(word.begin(), word.end(), word.begin(), [](unsigned char c) { return std::tolower(c); });
+      if (value.empty()) return option->get_name() + ": an empty value; leave the option out instead";
+      if (word == "nan") return option->get_name() + ": " + value + " is not a number";
+    }
+  }
+  return "";
 }
 
 int write_analysis_outputs(const CommonOptions& options, const model::Model& model,

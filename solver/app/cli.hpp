@@ -76,6 +76,11 @@ int exit_code_of(analysis::Verdict verdict);
 /// --max-input-bytes, --max-depth, ... (io/input_limits.hpp): how much input a command accepts.
 void add_input_limits(CLI::App* command, io::InputLimits& limits);
 
+/// What CLI11's own checks let through, refused with a message naming the option: an empty value
+/// (`-o ''` would mean "no output" and be silently ignored) and NaN (comparisons with it are
+/// false, so a range check passes it). Empty when every value given is fine.
+std::string refused_option_value(const CLI::App& command);
+
 /// What a command writes besides mechanism.svg and the analysis' result: a second picture in
 /// --svg and, when `section` is named, a section added to the result JSON.
 struct ExtraOutput {

@@ -41,6 +41,13 @@ int main(int argc, char** argv) {
     return kUsage;
   }
 
+  for (const Command& command : commands) {
+    if (!*command.app) continue;
+    const std::string refused = refused_option_value(*command.app);
+    if (refused.empty()) break;
+    std::cerr << "rbla: " << shown(refused) << "\n";
+    return kUsage;
+  }
   try {
     for (const Command& command : commands) {
       if (*command.app) return command.run();

@@ -117,6 +117,25 @@ TEST_F(Cli, UsageErrorExitsWithOne) {
   EXPECT_EQ(run("validate --no-such-flag x.json").exit_code, 1);
 }
 
+// Values CLI11's own checks let through: an empty path (read as "no output", so nothing was
+// written and the exit was 0), NaN (a range check passes it) and a negative size limit (an
+// unsigned option took -1 as 2^64 - 1, no limit).
+TEST_F(Cli, EmptyNotANumberAndNegativeOptionValuesAreRefused) {
+  const std::string model = write("m.json", box_model(R"("analysis": {"seismic": {"direction": [1, 0, 0]}}, )"));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"solve " + model + " -o ''", "--output: an empty value"},
+      {"solve " + model + " --svg ''", "--svg: an empty value"},
+      {"critical-friction " + model + " --target-alpha nan", "--target-alpha: nan is not a number"},
+      {"worst-direction " + model + " --tolerance -NaN", "--tolerance: -NaN is not a number"},
+      {"solve " + model + " --max-input-bytes -1", "--max-input-bytes: must be positive"},
+  };
+  for (const auto& [arguments, words] : cases) {
+    const auto r = run(arguments);
+    EXPECT_EQ(r.exit_code, 1) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(words), std::string::npos) << arguments << "\n" << r.output;
+  }
+}
+
 TEST_F(Cli, InvalidInputWritesNoOutputFile) {
   const auto r = run("info " + write("bad.json", "{}") + " -o " + path("out.json"));
   EXPECT_EQ(r.exit_code, 2) << r.output;

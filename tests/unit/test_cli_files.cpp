@@ -231,6 +231,41 @@ TEST_F(CliFiles, AFailedWriteLeavesTheOldFileAsItWas) {
   expect_no_temporary_files();
 }
 
+/// rbla run as a user other than root (nobody, through util-linux's setpriv, when the tests run as
+/// root, which may replace any file), so that file permissions apply.
+RunResult run_unprivileged(const std::string& arguments) {
+  const std::string as = ::geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : "";
+  std::string command = as + RBLA_BINARY + " " + arguments + " 2>&1";
+  RunResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+// A file rbla may not write (read-only, or another user's) is not replaced, though the folder
+// would let a rename put a new file in its place; a folder it may not write into is said before
+// the analysis.
+TEST_F(CliFiles, AFileWeMayNotWriteIsNotReplaced) {
+  ASSERT_EQ(::chmod(dir_.c_str(), 0777), 0);
+  const std::string m = model();
+  const std::string read_only = write("read_only.json", "kept");
+  ASSERT_EQ(::chmod(read_only.c_str(), 0444), 0);
+  auto r = run_unprivileged("solve -q " + m + " -o " + read_only);
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_NE(r.output.find("may not be written"), std::string::npos) << r.output;
+  EXPECT_EQ(read(read_only), "kept");
+  ASSERT_EQ(::mkdir(path("closed").c_str(), 0555), 0);
+  r = run_unprivileged("solve " + m + " -o " + path("closed/r.json"));
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_NE(r.output.find("cannot write into its folder"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("Collapse"), std::string::npos) << "refused before the analysis";
+  expect_no_temporary_files();
+}
+
 TEST_F(CliFiles, MissingFoldersAreFileErrorsFoundBeforeTheAnalysis) {
   const std::string m = model();
   const std::string file = write("plain.txt", "x");

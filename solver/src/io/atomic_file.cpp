@@ -274,6 +274,11 @@ OutputTarget resolve_output(const std::string& path) {
   }
   if (!S_ISDIR(info.st_mode)) refuse(out, quoted_path(folder) + " is not a folder");
   out.directory = FileIdentity{info.st_dev, info.st_ino};
+  // Asked before any work: the new file is made in the folder and renamed over the old one, which
+  // the folder's permission alone would allow; a file we may not write (read-only, or another
+  // user's) is not ours to replace, as it would not be for cp or a shell's redirection.
+  if (::access(folder.c_str(), W_OK | X_OK) != 0) refuse(out, "cannot write into its folder " + quoted_path(folder), errno);
+  if (out.identity && ::access(out.target.c_str(), W_OK) != 0) refuse(out, "the file there may not be written", errno);
   return out;
 }
 

@@ -8,7 +8,8 @@
 //     permission bits (and its owner and group where the system lets us);
 //   - a symbolic link: followed, and its target written by the rules above (a dangling link
 //     gets its target created);
-//   - a directory, a block device or a socket: refused.
+//   - a directory, a block device or a socket: refused; so is a regular file we may not write, or
+//     a folder we may not write into (access(2)), though rename would replace such a file.
 // On any failure the temporary file is removed and whatever was at the path is left as it was.
 #pragma once
 
