@@ -88,6 +88,15 @@ bool check_paths(const CommonOptions& options, const std::vector<std::string>& s
     for (auto& target : io::resolve_outputs_in_folder(options.svg_dir, svg_names)) {
       outputs.push_back(std::move(target));
     }
+    // A folder still to be made is checked as the file it would displace (-o r.json --svg r.json);
+    // one whose parents are missing too is made with them, and cannot be another output.
+    std::error_code missing;
+    if (!std::filesystem::exists(options.svg_dir, missing)) {
+      try {
+        outputs.push_back(io::resolve_output(options.svg_dir));
+      } catch (const io::FileError&) {
+      }
+    }
   }
   io::check_outputs(options.model_path, outputs);
   return std::any_of(outputs.begin(), outputs.end(), io::goes_to_standard_output);

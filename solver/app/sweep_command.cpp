@@ -10,6 +10,7 @@
 #include "io/sweep_io.hpp"
 
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -164,12 +165,40 @@ int collect_sweep(const SweepOptions& sweep, const model::Model& m,
   return complete ? kSuccess : kSolverFailure;
 }
 
+/// Every file the sweep may write (the Slurm script, the points' files, the summary and its
+/// picture, and the folder itself while it does not exist) checked against the model and each
+/// other before anything runs: a link in the folder, or a script named like the model, would
+/// otherwise replace the model.
+void check_sweep_outputs(const CommonOptions& options, const SweepOptions& sweep,
+                         const std::vector<analysis::SweepPoint>& points) {
+  std::vector<io::OutputTarget> outputs;
+  if (!sweep.slurm_script.empty()) outputs.push_back(io::resolve_output(sweep.slurm_script));
+  std::vector<std::string> names{"summary.csv", "sweep.svg"};
+  for (const auto& point : points) names.push_back(io::point_file_name(point.index));
+  for (auto& target : io::resolve_outputs_in_folder(sweep.out_dir, names)) outputs.push_back(std::move(target));
+  struct stat info {};
+  if (::stat(sweep.out_dir.c_str(), &info) != 0) outputs.push_back(io::resolve_output(sweep.out_dir));
+  io::check_outputs(options.model_path, outputs);
+}
+
+/// Tasks read the model again, each on its own: from a regular file only (a pipe would be read
+/// once, by the first).
+void check_model_rereadable(const CommonOptions& options, const SweepOptions& sweep) {
+  if (sweep.jobs <= 1 && sweep.slurm_script.empty() && sweep.task < 0) return;
+  struct stat info {};
+  if (options.model_path == "-" || (::stat(options.model_path.c_str(), &info) == 0 && !S_ISREG(info.st_mode))) {
+    throw model::ModelError("model", "a sweep run as several tasks reads the model once per task: give a regular "
+                                     "file, not '-' or a pipe");
+  }
+}
+
 int run_sweep(const CommonOptions& options, SweepOptions sweep) {
   const auto axes = sweep_axes(sweep);
   if (sweep.task >= sweep.tasks) throw model::ModelError("--task", "must be below --tasks");
-  if (options.model_path == "-" && (sweep.jobs > 1 || !sweep.slurm_script.empty() || sweep.task >= 0)) {
-    throw model::ModelError("model", "a sweep run as several tasks reads the model from a file, not '-'");
-  }
+  check_model_rereadable(options, sweep);
+  const auto points = sweep.random.empty() ? analysis::grid_points(axes)
+                                           : analysis::random_points(axes, sweep.samples, sweep.seed);
+  check_sweep_outputs(options, sweep, points);
   if (!sweep.slurm_script.empty()) {
     if (sweep.task >= 0) throw model::ModelError("--task", "the Slurm script runs every task; give --tasks only");
     const int code = write_output(sweep.slurm_script, io::slurm_script(task_command(sweep.command), sweep.tasks));
@@ -180,8 +209,6 @@ int run_sweep(const CommonOptions& options, SweepOptions sweep) {
   int exit_code = kSuccess;
   if (!load(options, loaded, exit_code)) return exit_code;
   analysis::check_sweep(loaded.model, axes);
-  const auto points = sweep.random.empty() ? analysis::grid_points(axes)
-                                           : analysis::random_points(axes, sweep.samples, sweep.seed);
   io::make_folder(sweep.out_dir);
   if (sweep.task >= 0) return solve_sweep_points(options, sweep, loaded.model, axes, points);
   if (!sweep.collect) {

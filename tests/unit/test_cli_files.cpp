@@ -274,6 +274,8 @@ TEST_F(CliFiles, MissingFoldersAreFileErrorsFoundBeforeTheAnalysis) {
       {"--dump-problem " + path("none/p.cbf"), "its folder '" + path("none") + "' does not exist"},
       {"--svg " + file, "cannot write into '" + file + "': it is not a folder"},
       {"-o " + file + "/r.json", "cannot write '" + file + "/r.json': Not a directory"},
+      // The picture folder to be made where the result goes: it became a folder, the result failed.
+      {"-o " + path("r.json") + " --svg " + path("r.json"), "they are the same file"},
   };
   for (const auto& [arguments, words] : cases) {
     const auto r = run_rbla("solve -q " + m + " " + arguments);

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -174,6 +176,35 @@ TEST(Sweep, CollectRefusesPointFilesOfAnotherSweep) {
   EXPECT_NE(r.output.find("2 mismatched"), std::string::npos) << r.output;
   const std::string csv = read(dir / "summary.csv");
   EXPECT_NE(csv.find(",mismatched,,"), std::string::npos) << csv;
+  fs::remove_all(dir);
+}
+
+// No file the sweep writes may be the model: a Slurm script named like it, or a point file that
+// is a link to it, replaced the model with exit 0. Tasks read the model again, so a pipe is
+// refused when the sweep runs as several.
+TEST(Sweep, NoOutputOfTheSweepReplacesTheModel) {
+  const fs::path dir = fs::temp_directory_path() / ("rbla_sweep_model_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "points");
+  const fs::path model = dir / "model.json";
+  fs::copy_file(std::string(RBLA_SOURCE_DIR) + "/samples/block.json", model);
+  const std::string original = read(model);
+  fs::create_symlink(model, dir / "points" / "point_000001.json");
+  const std::string sweep = "sweep -q " + model.string() + " --grid friction=0.2:0.8:2 --out ";
+  auto r = rbla::testing::run_rbla(sweep + (dir / "points").string());
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_NE(r.output.find("it is the model being read"), std::string::npos) << r.output;
+  r = rbla::testing::run_rbla(sweep + (dir / "other").string() + " --tasks 2 --slurm-script " + model.string());
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_EQ(read(model), original);
+  EXPECT_FALSE(fs::exists(dir / "other")) << "refused before anything was made";
+  // A FIFO nobody writes into: the tasks hung reading it; refused before it is opened.
+  const fs::path fifo = dir / "fifo.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  r = rbla::testing::run_rbla("sweep -q " + fifo.string() + " --grid friction=0.2:0.8:2 --jobs 2 --out " +
+                              (dir / "piped").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("give a regular file"), std::string::npos) << r.output;
   fs::remove_all(dir);
 }
 
