@@ -2,6 +2,8 @@
 // devices, links, files with their modes, its own input), what it reads from (directories,
 // devices, endless streams, enormous inputs) and what its messages quote. Every FIFO, link and
 // device node is made in a temporary folder; nothing under /dev is touched.
+#include "io/load_model.hpp"
+#include "model/errors.hpp"
 #include "support/cli_runner.hpp"
 #include "support/model_builder.hpp"
 #include "support/temp_folder.hpp"
@@ -286,6 +288,19 @@ TEST_F(CliFiles, MissingFoldersAreFileErrorsFoundBeforeTheAnalysis) {
 }
 
 // ---- Input: a regular file, a pipe or '-', and no more than the limits ---------------------------
+
+// JSON text holds no NUL byte, and the parser took one for the end of the text: a model followed
+// by a NUL and anything at all was valid. From a file and from standard input.
+TEST_F(CliFiles, ANulByteIsMalformedJsonNotTheEndOfTheText) {
+  const std::string m = write("nul.json", model_text() + std::string(1, '\0') + "{{{{ junk");
+  for (const std::string& arguments : {"validate " + m, "validate - < " + m}) {
+    const auto r = run_rbla(arguments);
+    EXPECT_EQ(r.exit_code, 2) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find("holds a NUL byte at byte " + std::to_string(model_text().size())), std::string::npos)
+        << r.output;
+  }
+  EXPECT_THROW(rbla::io::load_model_text(model_text() + std::string(1, '\0')), rbla::model::ModelError);
+}
 
 TEST_F(CliFiles, ADirectoryAsTheModelIsAFileErrorNamingIt) {
   const auto r = run_rbla("validate " + dir_.string());
