@@ -10,11 +10,14 @@
 #include "io/sweep_io.hpp"
 
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -107,8 +110,28 @@ std::vector<std::string> task_command(const std::vector<std::string>& command) {
   return words;
 }
 
+/// The environment variable that tells a task which process started it (run_sweep_tasks).
+constexpr const char* kParentVariable = "RBLA_SWEEP_PARENT";
+
+/// A task started by run_sweep_tasks ends with its parent: a signal to the parent alone (kill, a
+/// job scheduler's SIGTERM) would otherwise leave the tasks running to the end of the sweep.
+/// Linux's parent-death signal; the check after it covers a parent that died just before.
+void end_with_the_parent() {
+  const char* parent = std::getenv(kParentVariable);
+  if (parent == nullptr) return;
+  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (std::to_string(::getppid()) != parent) std::raise(SIGTERM);
+}
+
 /// The same sweep as `jobs` tasks in child processes of this program, run at once.
 int run_sweep_tasks(const SweepOptions& sweep) {
+  std::vector<std::string> environment{std::string(kParentVariable) + "=" + std::to_string(::getpid())};
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (std::string(*e).rfind(std::string(kParentVariable) + "=", 0) != 0) environment.emplace_back(*e);
+  }
+  std::vector<char*> envp;
+  for (auto& entry : environment) envp.push_back(entry.data());
+  envp.push_back(nullptr);
   std::vector<pid_t> children;
   for (int k = 0; k < sweep.jobs; ++k) {
     std::vector<std::string> words = task_command(sweep.command);
@@ -121,7 +144,7 @@ int run_sweep_tasks(const SweepOptions& sweep) {
     for (auto& word : words) argv.push_back(word.data());
     argv.push_back(nullptr);
     pid_t pid = 0;
-    if (posix_spawn(&pid, self.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
+    if (posix_spawn(&pid, self.c_str(), nullptr, nullptr, argv.data(), envp.data()) != 0) {
       std::cerr << "rbla: could not start the sweep's task " << k << "\n";
       return kSolverFailure;
     }
@@ -210,7 +233,10 @@ int run_sweep(const CommonOptions& options, SweepOptions sweep) {
   if (!load(options, loaded, exit_code)) return exit_code;
   analysis::check_sweep(loaded.model, axes);
   io::make_folder(sweep.out_dir);
-  if (sweep.task >= 0) return solve_sweep_points(options, sweep, loaded.model, axes, points);
+  if (sweep.task >= 0) {
+    end_with_the_parent();
+    return solve_sweep_points(options, sweep, loaded.model, axes, points);
+  }
   if (!sweep.collect) {
     const int code = sweep.jobs > 1 ? run_sweep_tasks(sweep) : solve_sweep_points(options, sweep, loaded.model, axes, points);
     if (code == kFileError) return code;

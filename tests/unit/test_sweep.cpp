@@ -10,12 +10,21 @@
 
 #include <gtest/gtest.h>
 
+#include <spawn.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <vector>
+#include <thread>
+#include <chrono>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+extern char** environ;
 
 namespace {
 
@@ -205,6 +214,48 @@ TEST(Sweep, NoOutputOfTheSweepReplacesTheModel) {
                               (dir / "piped").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("give a regular file"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
+/// The processes whose command line holds `word` (other than this one).
+int processes_with(const std::string& word) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos || std::stoi(name) == ::getpid()) continue;
+    std::string cmdline = read(entry.path() / "cmdline");
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find(word) != std::string::npos) ++count;
+  }
+  return count;
+}
+
+// A signal to the sweep's parent alone (kill PID, a scheduler's SIGTERM) ends its tasks too: they
+// ran on to the end of the sweep, writing its files, after the parent had gone.
+TEST(Sweep, TheTasksEndWithTheirParent) {
+  const fs::path dir = fs::temp_directory_path() / ("rbla_sweep_parent_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string model = std::string(RBLA_SOURCE_DIR) + "/samples/wall_opening.json";
+  std::vector<std::string> words = {RBLA_BINARY, "sweep", "-q", model, "--out", dir.string(),
+                                    "--grid", "friction=0.3:0.8:20000", "--jobs", "2"};
+  std::vector<char*> argv;
+  for (auto& word : words) argv.push_back(word.data());
+  argv.push_back(nullptr);
+  pid_t parent = 0;
+  ASSERT_EQ(posix_spawn(&parent, RBLA_BINARY, nullptr, nullptr, argv.data(), environ), 0);
+  // Waits (at most a minute: a bound, not a timing) until the tasks are solving points.
+  for (int k = 0; k < 600 && !fs::exists(dir / "point_000001.json"); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ASSERT_EQ(processes_with(dir.string()), 3) << "the parent and its two tasks";
+  ::kill(parent, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(::waitpid(parent, &status, 0), parent);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  int left = 3;
+  for (int k = 0; k < 300 && (left = processes_with(dir.string())) > 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(left, 0) << "tasks still running after their parent ended";
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
   fs::remove_all(dir);
 }
 
