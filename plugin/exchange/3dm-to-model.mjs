@@ -3,7 +3,7 @@
 // (docs/cad-attributes.md; the Rhino plugin reads the same keys the same way).
 import fs from 'node:fs';
 import path from 'node:path';
-import { parseArgs, numberOpt, main, usageError, writeFileAtomic } from './lib/cli.mjs';
+import { parseArgs, numberOpt, main, usageError, resolveOutput, checkNotInput, writeOutput } from './lib/cli.mjs';
 import { readFile3dm, file3dmToModel } from './lib/rhino-io.mjs';
 
 const USAGE = `usage: 3dm-to-model.mjs IN.3dm -o MODEL.json [--unit-weight W] [--friction MU] [--title TEXT]
@@ -19,6 +19,8 @@ main(async () => {
   } catch (e) { throw usageError(e.message); }
   if (args.help) { console.log(USAGE); return 0; }
   if (args._.length !== 1 || !args.out) throw usageError('need one input .3dm and -o MODEL.json');
+  const out = resolveOutput(args.out);  // refused before any work: never an input, a folder, ...
+  checkNotInput(out, [args._[0]]);
   const unitWeight = numberOpt(args.unitWeight, '--unit-weight');
   const friction = numberOpt(args.friction, '--friction');
   const bytes = new Uint8Array(fs.readFileSync(args._[0]));
@@ -32,7 +34,7 @@ main(async () => {
     process.stderr.write(`${args._[0]}: ${errors.length} error(s); no model written\n`);
     return 1;
   }
-  writeFileAtomic(args.out, JSON.stringify(model, null, 1) + '\n');
+  writeOutput(out, JSON.stringify(model, null, 1) + '\n');
   process.stderr.write(`wrote ${args.out}: ${model.blocks.length} blocks, ${(model.interfaces || []).length} interfaces given, units ${model.units.length}\n`);
   return 0;
 }, USAGE);

@@ -9,8 +9,9 @@ Modules:
   geometry        vector and polyhedron helpers (divergence-theorem volume and centroid)
   jsonschema_lite small draft-07 validator for the bundled schemas (data/)
   compas_import   COMPAS assembly JSON -> model JSON
+  safe_files      reading inputs and writing outputs by the solver's rules (atomic, never the input)
 """
 
 __version__ = "0.1.0"
 
-__all__ = ["compas_import", "geometry", "jsonschema_lite", "model", "result", "runner"]
+__all__ = ["compas_import", "geometry", "jsonschema_lite", "model", "result", "runner", "safe_files"]

@@ -38,8 +38,15 @@ Usage (from plugin/)::
     python3 -m rbla_cad.compas_import IN.json -o OUT.json [--support 0,1] [--ground auto|always|never]
                                      [--interfaces] [--unit-weight W] [--friction MU]
 
-Exit status: 0 converted, 1 the file is not a convertible assembly (message on stderr),
-2 a block failed its checks.
+Exit status (one line on stderr says why): 0 converted; 1 a bad option (``--friction -1``,
+``--unit-weight nan``: the ranges of the model schema) or a file that is not a convertible
+assembly; 2 invalid input (not JSON, nested too deeply) or a block failed its checks (the model
+is still written); 4 a file that cannot be read or written. Files are read and written as the
+solver does (``safe_files``): the input must be a regular file, a pipe or ``-`` of at most
+``--max-input-bytes`` (devices and folders are refused before reading); the output is never the
+input, a folder, a block device or a socket, a pipe or character device is written into, and a
+file is replaced atomically (temporary file in its folder, then renamed), a link's target in its
+place.
 """
 
 import argparse
@@ -52,6 +59,7 @@ from .compas_formats import ConversionError, read_assembly, unwrap  # noqa: F401
 # Geometry helpers are shared with the rest of the core (divergence-theorem volume, Newell normal).
 from .geometry import dot as _dot, newell_normal, sub as _sub, volume_centroid
 from .jsonschema_lite import load_schema
+from .safe_files import MAX_INPUT_BYTES, FileError, check_not_input, read_input, resolve_output, write_output
 
 SCHEMA_VERSION = "1.0.0"
 
@@ -392,11 +400,41 @@ def _report(path, model, info, with_interfaces):
     return 2 if bad else 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """Bad options exit 1 with one line (the solver's usage error), not argparse's 2 and usage."""
+
+    def error(self, message):
+        self.exit(1, "%s: %s (see --help)\n" % (self.prog, message))
+
+
+def _number(low, high):
+    """An argparse type: a finite number in (low, high], the range the model schema allows."""
+    def parse(text):
+        try:
+            x = float(text)
+        except ValueError:
+            x = float("nan")
+        if not (low < x <= high):  # also false for nan
+            raise argparse.ArgumentTypeError("must be a number in (%g, %g], got %r"
+                                             % (low, high, text))
+        return x
+    return parse
+
+
+def option_ranges():
+    """(low, high) of the unit weight and the friction coefficient, from the bundled schema."""
+    props = load_schema("model")["properties"]["defaults"]["properties"]
+    return tuple((props[k].get("exclusiveMinimum", 0), props[k]["maximum"])
+                 for k in ("unit_weight", "friction"))
+
+
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="python3 -m rbla_cad.compas_import",
-                                description="Convert a COMPAS assembly (or meshes) JSON file to an rbla model.")
-    p.add_argument("input", help="COMPAS JSON file (COMPAS 1 or 2)")
-    p.add_argument("-o", "--output", default=None, help="rbla model JSON (default stdout)")
+    p = _Parser(prog="python3 -m rbla_cad.compas_import",
+                description="Convert a COMPAS assembly (or meshes) JSON file to an rbla model.")
+    p.add_argument("input", help="COMPAS JSON file (COMPAS 1 or 2), a pipe, or - for standard input")
+    p.add_argument("-o", "--output", default=None,
+                   help="rbla model JSON (default stdout); never the input, a folder or a device "
+                        "other than a pipe or character device")
     p.add_argument("--support", action="append", default=[],
                    help="node key(s) to make fixed, comma-separated; repeatable")
     p.add_argument("--ground", choices=["auto", "always", "never"], default="auto",
@@ -408,40 +446,59 @@ def main(argv=None):
     p.add_argument("--fix-orientation", action="store_true",
                    help="reverse the faces of blocks whose volume from the faces is negative")
     default_unit_weight, default_friction = model_defaults()
-    p.add_argument("--unit-weight", type=float, default=default_unit_weight,
-                   help="kN/m3 (default %g)" % default_unit_weight)
-    p.add_argument("--friction", type=float, default=default_friction,
-                   help="mu (default %g)" % default_friction)
+    unit_weight_range, friction_range = option_ranges()
+    p.add_argument("--unit-weight", type=_number(*unit_weight_range),
+                   default=default_unit_weight, help="kN/m3 (default %g)" % default_unit_weight)
+    p.add_argument("--friction", type=_number(*friction_range),
+                   default=default_friction, help="mu (default %g)" % default_friction)
+    p.add_argument("--max-input-bytes", type=_number(0, float(1 << 62)),
+                   default=MAX_INPUT_BYTES,
+                   help="refuse a larger input (default %d, the solver's)" % MAX_INPUT_BYTES)
     p.add_argument("--compact", action="store_true", help="write the JSON on one line")
     args = p.parse_args(argv)
 
     name = os.path.splitext(os.path.basename(args.input))[0]
+    # The output is examined before the conversion, so a wrong -o is never clobbered.
+    output = "-" if args.output is None else args.output
     try:
-        with open(args.input, encoding="utf-8") as fh:
-            doc = json.load(fh)
-    except (OSError, ValueError) as e:
+        raw = read_input(args.input, int(args.max_input_bytes))
+        d = os.path.dirname(output)
+        if output != "-" and d and not os.path.lexists(d):
+            os.makedirs(d)  # the converter has always created a missing output folder
+        out = resolve_output(output)
+        check_not_input(out, [args.input])
+    except FileError as e:
+        sys.stderr.write("%s\n" % e)
+        return 4
+    except OSError as e:
+        sys.stderr.write("cannot create the folder of '%s': %s\n" % (output, e.strerror or e))
+        return 4
+    try:
+        doc = json.loads(raw.decode("utf-8"))
+    except RecursionError:
+        sys.stderr.write("%s: cannot read JSON: too deeply nested\n" % args.input)
+        return 2
+    except ValueError as e:  # JSONDecodeError and UnicodeDecodeError
         sys.stderr.write("%s: cannot read JSON: %s\n" % (args.input, e))
-        return 1
+        return 2
     supports = [s.strip() for arg in args.support for s in arg.split(",") if s.strip()]
     try:
         model, info = convert(doc, name=name, supports=supports,
                               ground="always" if args.fix_lowest else args.ground,
                               with_interfaces=args.interfaces, unit_weight=args.unit_weight,
                               friction=args.friction, fix_orientation=args.fix_orientation)
+        text = dumps_model(model, args.compact)
     except ConversionError as e:
         sys.stderr.write("%s: cannot convert: %s\n" % (args.input, e))
         return 1
-    text = dumps_model(model, args.compact)
-    if args.output in (None, "-"):
-        sys.stdout.write(text)
-    else:
-        d = os.path.dirname(args.output)
-        if d:
-            os.makedirs(d, exist_ok=True)
-        tmp = args.output + ".tmp"
-        with open(tmp, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, args.output)
+    except RecursionError:  # valid JSON nested deeper than the converter walks
+        sys.stderr.write("%s: cannot convert: too deeply nested\n" % args.input)
+        return 2
+    try:
+        write_output(out, text)
+    except FileError as e:
+        sys.stderr.write("%s\n" % e)
+        return 4
     return _report(args.input, model, info, args.interfaces)
 
 

@@ -39,6 +39,7 @@ import json
 import os
 import re
 import shutil
+import stat
 import subprocess
 import sys
 import tempfile
@@ -283,11 +284,15 @@ class Runner(object):
                 args += ["--svg", os.path.abspath(svg_dir)]
             if verbose:
                 args.append("-v")
+            # A result already at result_path (an earlier run's) is not this run's answer: read
+            # the file only when this run wrote it (the solver renames a new file into place).
+            before = _file_identity(out_path)
             start = time.time()
             code, stdout, stderr = self._run(args, progress, cancel, timeout, tmp)
             seconds = time.time() - start
             result = None
-            if code in (0, 3) and os.path.isfile(out_path):
+            after = _file_identity(out_path)
+            if code in (0, 3) and after is not None and after != before:
                 with open(out_path, "r", encoding="utf-8") as f:
                     result = Result(json.load(f))
             verdict_line = stdout.strip().splitlines()[-1] if stdout.strip() else ""
@@ -437,6 +442,18 @@ def _analysis_kwargs(kwargs):
     if unknown:
         raise TypeError("unexpected keyword arguments: %s" % ", ".join(sorted(unknown)))
     return kwargs
+
+
+def _file_identity(path):
+    """What tells one version of a regular file from another (device, inode, size, times), or
+    None when there is no regular file at path."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    if not stat.S_ISREG(st.st_mode):
+        return None
+    return (st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns)
 
 
 def _cancelled(cancel):

@@ -1,5 +1,7 @@
 // Minimal argument parsing shared by the exchange command-line scripts.
+import crypto from 'node:crypto';
 import fs from 'node:fs';
+import path from 'node:path';
 export function parseArgs(argv, spec) {
   // spec: { positional: n, options: { '-o': 'out', '--amplitude': 'amplitude', ... }, flags: {...} }
   const out = { _: [] };
@@ -41,14 +43,114 @@ export async function main(fn, usage) {
 
 export function usageError(msg) { const e = new Error(msg); e.usage = true; return e; }
 
-/** Write a file whole or not at all: a temporary file next to it, renamed into place. */
-export function writeFileAtomic(file, data) {
-  const tmp = `${file}.tmp${process.pid}`;
+// ---- Outputs, written by the solver's rules (solver/src/io/atomic_file.hpp) -------------------
+// '-' is standard output; a FIFO or a character device (a pipe, a terminal, /dev/null) is written
+// into, never replaced; a regular file (or nothing yet) is written to a temporary file in its
+// folder and renamed over it (atomic), keeping the old file's permission bits; a symbolic link is
+// followed and its target written; a directory, block device or socket is refused, and so is a
+// file or folder we may not write. An output that is one of the inputs is refused. On failure the
+// temporary file is removed and what was there is left as it was.
+
+function refuse(file, target, why) {
+  const link = target && target !== file ? ` (a link to '${target}')` : '';
+  throw new Error(`cannot write '${file}'${link}: ${why}`);
+}
+
+function kindOf(st) {
+  if (st.isDirectory()) return 'it is a directory';
+  if (st.isBlockDevice()) return 'it is a block device';
+  if (st.isSocket()) return 'it is a socket';
+  return 'it is not a regular file';
+}
+
+/** The path a chain of symbolic links ends at, whether or not something is there. */
+function followLinks(file) {
+  let current = file;
+  for (let hops = 0; hops < 40; hops++) {
+    const st = fs.lstatSync(current, { throwIfNoEntry: false });
+    if (!st || !st.isSymbolicLink()) return current;
+    const to = fs.readlinkSync(current);
+    current = path.isAbsolute(to) ? to : path.join(path.dirname(current), to);
+  }
+  refuse(file, current, 'too many levels of symbolic links');
+}
+
+/** Where an output path leads: { file, kind: 'stdout' | 'stream' | 'replace', target, identity }.
+ *  Call it before the work, so a wrong -o is refused before anything is read or written. */
+export function resolveOutput(file) {
+  if (file === '-') return { file, kind: 'stdout' };
+  if (!file) throw new Error('cannot write to an empty path');
+  // What the system reaches through the path: a pipe behind /dev/stdout is a link whose text
+  // ("pipe:[123]") names no file, so pipes and devices are judged from here.
+  let st;
+  try { st = fs.statSync(file, { throwIfNoEntry: false }); } catch { st = undefined; }
+  if (st && !st.isFile()) {
+    if (st.isFIFO() || st.isCharacterDevice()) return { file, kind: 'stream', target: file, identity: `${st.dev}:${st.ino}` };
+    refuse(file, null, kindOf(st));
+  }
+  const target = followLinks(file);
+  const name = path.basename(target);
+  if (!name || name === '.' || name === '..' || /[\\/]$/.test(target)) refuse(file, target, 'it names a folder, not a file');
+  const folder = path.dirname(target);
+  const dir = fs.statSync(folder, { throwIfNoEntry: false });
+  if (!dir || !dir.isDirectory()) refuse(file, target, `its folder '${folder}' does not exist or is not a folder`);
+  // Rename would replace a read-only file given a writable folder; a file we may not write is not ours.
+  try { fs.accessSync(folder, fs.constants.W_OK | fs.constants.X_OK); } catch { refuse(file, target, `cannot write into its folder '${folder}'`); }
+  if (st) { try { fs.accessSync(target, fs.constants.W_OK); } catch { refuse(file, target, 'the file there may not be written'); } }
+  return { file, kind: 'replace', target, identity: st ? `${st.dev}:${st.ino}` : null };
+}
+
+/** Refuses an output that is one of the input files, however either is spelled (device + inode). */
+export function checkNotInput(out, inputs) {
+  if (!out.identity) return;
+  for (const input of inputs) {
+    let st;
+    try { st = fs.statSync(input); } catch { continue; }
+    if (`${st.dev}:${st.ino}` === out.identity) throw new Error(`will not write '${out.file}': it is the input '${input}'`);
+  }
+}
+
+function writeAll(fd, buf) {
+  for (let off = 0; off < buf.length;) off += fs.writeSync(fd, buf, off, buf.length - off);
+}
+
+/** Writes data (string as UTF-8, or bytes) to out (from resolveOutput, or a path) by the rules above. */
+export function writeOutput(out, data) {
+  if (typeof out === 'string') out = resolveOutput(out);
+  const buf = typeof data === 'string' ? Buffer.from(data, 'utf8') : Buffer.from(data.buffer, data.byteOffset, data.byteLength);
+  if (out.kind === 'stdout') { process.stdout.write(buf); return; }
+  if (out.kind === 'stream') {
+    let fd;
+    try { fd = fs.openSync(out.target, fs.constants.O_WRONLY | (fs.constants.O_NOCTTY || 0)); } catch (e) { refuse(out.file, null, e.message); }
+    try {
+      const st = fs.fstatSync(fd);  // swapped for a file since resolveOutput: never write a file this way
+      if (!st.isFIFO() && !st.isCharacterDevice()) refuse(out.file, null, 'it changed while being opened');
+      writeAll(fd, buf);
+    } catch (e) {
+      if (e.code) refuse(out.file, null, e.message);
+      throw e;
+    } finally { fs.closeSync(fd); }
+    return;
+  }
+  const folder = path.dirname(out.target);
+  const tmp = path.join(folder, `${path.basename(out.target).slice(0, 200)}.tmp-${process.pid}-${crypto.randomBytes(4).toString('hex')}`);
+  let fd;
+  try { fd = fs.openSync(tmp, 'wx', 0o666); } catch (e) { refuse(out.file, out.target, `cannot create a temporary file in '${folder}': ${e.message}`); }
   try {
-    fs.writeFileSync(tmp, data);
-    fs.renameSync(tmp, file);
+    try {
+      writeAll(fd, buf);
+      fs.fsyncSync(fd);
+      const old = fs.statSync(out.target, { throwIfNoEntry: false });
+      if (old && !old.isFile()) refuse(out.file, out.target, 'it changed while being written: it is no longer a regular file');
+      if (old) fs.fchmodSync(fd, old.mode & 0o7777);  // a new file keeps 0666 less the umask
+    } finally { fs.closeSync(fd); }
+    fs.renameSync(tmp, out.target);
   } catch (e) {
-    try { fs.unlinkSync(tmp); } catch { /* nothing was written */ }
+    try { fs.unlinkSync(tmp); } catch { /* already gone */ }
+    if (e.code) refuse(out.file, out.target, e.message);
     throw e;
   }
 }
+
+/** Write a file whole or not at all (writeOutput's rules; kept for callers of the old name). */
+export function writeFileAtomic(file, data) { writeOutput(file, data); }
