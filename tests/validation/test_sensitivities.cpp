@@ -3,11 +3,13 @@
 // alpha does not depend on its unit weight) and against central finite differences of whole
 // analyses on the bundled wall with an opening.
 #include "analysis/sensitivities.hpp"
+#include "io/sensitivities_json.hpp"
 #include "validation_helpers.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace rbla::validation {
 namespace {
@@ -36,6 +38,36 @@ TEST(Sensitivities, NotReportedForNonAssociativeFriction) {
   s.mu = 0.3;
   s.friction_model = "non_associative";
   EXPECT_FALSE(run(single_block(1.0, 2.0, s)).sensitivities.has_value());
+}
+
+// A model drawn in millimetres with unit weights in kN/m3 (units.unit_weight) reports the same
+// d alpha / d unit weight as the model in metres: per the unit the model gives unit weights in.
+// They were per kN/mm^3, 1e9 times the metre model's.
+TEST(Sensitivities, UnitWeightDerivativesArePerTheModelsUnitWeightUnit) {
+  Case s;
+  s.mu = 0.8;
+  const json metres = column(3, 1.0, 3.0, s);  // tips about its base: each block's weight matters
+  json millimetres = metres;
+  millimetres["units"]["length"] = "mm";
+  for (json& block : millimetres["blocks"]) {
+    for (json& v : block["vertices"]) {
+      for (json& x : v) x = x.get<double>() * 1000.0;
+    }
+  }
+  std::vector<json> written;
+  for (const json& model : {metres, millimetres}) {
+    const auto loaded = rbla::io::load_model_text(model.dump());
+    const AnalysisResult r = rbla::analysis::analyse(loaded.model);
+    ASSERT_TRUE(r.sensitivities);
+    written.push_back(rbla::io::sensitivities_json(loaded.model, *r.sensitivities)["blocks"]);
+  }
+  ASSERT_GE(written[0].size(), 2u);
+  ASSERT_EQ(written[1].size(), written[0].size());
+  for (std::size_t b = 0; b < written[0].size(); ++b) {
+    const double in_m = written[0][b]["d_load_multiplier_d_unit_weight"], in_mm = written[1][b]["d_load_multiplier_d_unit_weight"];
+    EXPECT_GT(std::abs(in_m), 1e-6) << b;
+    EXPECT_LT(relative_error(in_mm, in_m), 1e-6) << b << ": " << in_mm << " against " << in_m;
+  }
 }
 
 /// The value the sensitivities differentiate: alpha, or the base reaction under settlement (model
