@@ -67,6 +67,10 @@ analysis::AnalysisOptions analysis_options_of(const CommonOptions& options) {
 
 int run_worst_direction(const CommonOptions& options, const analysis::RadialSearchSettings& settings) {
   const auto start = Clock::now();
+  if (settings.initial_samples > settings.max_samples) {
+    throw model::ModelError("--initial-directions", "must not exceed --max-directions (" +
+                                                        std::to_string(settings.max_samples) + ")");
+  }
   const bool stdout_taken = check_paths(options, {"mechanism.svg", "worst_direction.svg"});
   io::LoadedModel loaded;
   int exit_code = kSuccess;

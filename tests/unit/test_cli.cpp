@@ -134,6 +134,10 @@ TEST_F(Cli, EmptyNotANumberAndNegativeOptionValuesAreRefused) {
     EXPECT_EQ(r.exit_code, 1) << arguments << "\n" << r.output;
     EXPECT_NE(r.output.find(words), std::string::npos) << arguments << "\n" << r.output;
   }
+  // More first directions than directions in all ran the first ones anyway.
+  const auto r = run("worst-direction " + model + " --initial-directions 20 --max-directions 5");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--initial-directions: must not exceed --max-directions (5)"), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, InvalidInputWritesNoOutputFile) {
