@@ -113,15 +113,28 @@ int interface_between(const model::Model& m, const std::string& a, const std::st
 // 1.0, both above tan(20) = 0.364. Scaling only one joint, that joint must reach tan(beta): the
 // factor is tan(beta) / 0.5 for the bed joint and tan(beta) / 1.0 for the upper one. Scaling
 // both together would need the larger of the two, tan(beta) / 0.5, either way.
+/// Two blocks stacked on a plane at 20 degrees, the bed joint at mu `bed_mu` and the joint
+/// between them at `upper_mu`, with the indices of those joints.
+struct InclinedStack {
+  model::Model m;
+  int bed = -1, upper = -1;
+};
+InclinedStack inclined_stack(double beta, double bed_mu, double upper_mu) {
+  InclinedStack s{rbla::io::load_model_text(inclined_block(beta, 0.6, true).dump()).model};
+  s.bed = interface_between(s.m, "base", "block");
+  s.upper = interface_between(s.m, "block", "top");
+  if (s.bed >= 0) s.m.interfaces[s.bed].friction = bed_mu;
+  if (s.upper >= 0) s.m.interfaces[s.upper].friction = upper_mu;
+  return s;
+}
+
 TEST(CriticalFriction, OnlyTheChosenJointIsScaled) {
   const double beta = 20.0 * kPi / 180.0;
-  auto loaded = rbla::io::load_model_text(inclined_block(beta, 0.6, true).dump());
-  model::Model& m = loaded.model;
-  const int bed = interface_between(m, "base", "block"), upper = interface_between(m, "block", "top");
+  InclinedStack stack = inclined_stack(beta, 0.5, 1.0);
+  model::Model& m = stack.m;
+  const int bed = stack.bed, upper = stack.upper;
   ASSERT_GE(bed, 0);
   ASSERT_GE(upper, 0);
-  m.interfaces[bed].friction = 0.5;
-  m.interfaces[upper].friction = 1.0;
   rbla::analysis::ThresholdSettings settings;
   settings.tolerance = 1e-6;
   for (const auto& [joint, given] : {std::pair{bed, 0.5}, std::pair{upper, 1.0}}) {
@@ -150,20 +163,15 @@ TEST(CriticalFriction, OnlyTheChosenJointIsScaled) {
 // reported that no friction is enough.
 TEST(CriticalFriction, ACoefficientAtTheLimitIsHeldWhileTheOthersGrow) {
   const double beta = 20.0 * kPi / 180.0;
-  auto loaded = rbla::io::load_model_text(inclined_block(beta, 0.6, true).dump());
-  model::Model& m = loaded.model;
-  const int bed = interface_between(m, "base", "block"), upper = interface_between(m, "block", "top");
-  ASSERT_GE(bed, 0);
-  ASSERT_GE(upper, 0);
-  m.interfaces[bed].friction = 0.15;
-  m.interfaces[upper].friction = 50.0;
+  const InclinedStack stack = inclined_stack(beta, 0.15, 50.0);
+  ASSERT_GE(stack.upper, 0);
   rbla::analysis::ThresholdSettings settings;
   settings.tolerance = 1e-6;
-  const auto c = rbla::analysis::find_critical_friction(m, std::nullopt, {}, settings);
+  const auto c = rbla::analysis::find_critical_friction(stack.m, std::nullopt, {}, settings);
   ASSERT_EQ(c.outcome, ThresholdOutcome::Bracketed) << c.verdict_text;
   EXPECT_TRUE(c.certified) << c.stop;
   EXPECT_LT(relative_error(*c.factor_upper, std::tan(beta) / 0.15), 2e-6);
-  EXPECT_EQ(c.model_at_critical.interfaces[upper].friction, 100.0);
+  EXPECT_EQ(c.model_at_critical.interfaces[stack.upper].friction, 100.0);
   EXPECT_NE(c.verdict_text.find("1 coefficient held at 100"), std::string::npos) << c.verdict_text;
 }
 

@@ -52,78 +52,107 @@ void update(Bracket& b, const ThresholdSample& s) {
 
 }  // namespace
 
-Threshold find_threshold(const std::function<ThresholdSample(double x)>& evaluate, const ThresholdSettings& settings) {
-  Threshold out;
-  auto take = [&](double x) {
-    ThresholdSample s = evaluate(x);
+namespace {
+
+/// One search: its samples so far, and its two phases (bracketing, then narrowing).
+class Search {
+ public:
+  Search(const std::function<ThresholdSample(double x)>& evaluate, const ThresholdSettings& settings)
+      : evaluate_(evaluate), settings_(settings) {}
+
+  Threshold run() {
+    if (bracket()) narrow();
+    return std::move(out_);
+  }
+
+ private:
+  /// Evaluates at x and records it; false when the evaluation was unusable (the search ends).
+  bool take(double x) {
+    ThresholdSample s = evaluate_(x);
     s.x = x;
-    out.samples.push_back(s);
+    out_.samples.push_back(s);
     if (!s.usable) {
-      out.outcome = ThresholdOutcome::Failed;
-      out.stop = s.why_unusable;
+      out_.outcome = ThresholdOutcome::Failed;
+      out_.stop = s.why_unusable;
       return false;
     }
-    if (s.passes && (!out.upper || x < *out.upper)) out.upper = x;
-    if (!s.passes && (!out.lower || x > *out.lower)) out.lower = x;
+    if (s.passes && (!out_.upper || x < *out_.upper)) out_.upper = x;
+    if (!s.passes && (!out_.lower || x > *out_.lower)) out_.lower = x;
     return true;
-  };
-  auto out_of_samples = [&]() { return static_cast<int>(out.samples.size()) >= settings.max_samples; };
-
-  // Bracketing. The range's far end first: a test that passes (or fails) everywhere is common
-  // (a wall of level courses stands with any friction) and is settled in two evaluations. Then
-  // halve from a passing start, double from a failing one.
-  double x = settings.start;
-  if (!take(x)) return out;
-  const bool first_passes = out.samples.back().passes;
-  const double far = first_passes ? settings.min_x : settings.max_x;
-  if (far != x && !take(far)) return out;
-  if (out.samples.back().passes == first_passes) {
-    out.outcome = first_passes ? ThresholdOutcome::PassesAtMinimum : ThresholdOutcome::FailsAtMaximum;
-    out.stop = (first_passes ? "passes at every " + settings.name + " tried, down to "
-                             : "fails at every " + settings.name + " tried, up to ") + format(far);
-    return out;
-  }
-  for (;;) {
-    const double next = first_passes ? 0.5 * x : 2.0 * x;
-    if ((first_passes ? next <= settings.min_x : next >= settings.max_x) || out_of_samples()) break;
-    x = next;
-    if (!take(x)) return out;
-    if (out.samples.back().passes != first_passes) break;
-  }
-  if (!out.lower || !out.upper) {
-    out.outcome = ThresholdOutcome::Failed;
-    out.stop = "no bracket within " + std::to_string(settings.max_samples) + " evaluations";
-    return out;
   }
 
-  Bracket b;
-  b.lo = *out.lower;
-  b.hi = *out.upper;
-  for (const ThresholdSample& s : out.samples) {
-    if (s.x == b.lo) b.g_lo = s.value;
-    if (s.x == b.hi) b.g_hi = s.value;
-  }
-  out.outcome = ThresholdOutcome::Bracketed;
-  // A chord step clamped next to an end is meant to cross the root; when it does not, the chord
-  // points at that end for another reason (g flat there): bisect until a sample lands on the
-  // other side of the root (+1: until one passes, -1: until one fails).
-  int bisect_until = 0;
-  while (b.hi - b.lo > settings.tolerance * b.hi) {
-    if (out_of_samples()) {
-      out.stop = "stopped at " + std::to_string(settings.max_samples) + " evaluations with the bracket [" +
-                 format(b.lo) + ", " + format(b.hi) + "]";
-      return out;
+  bool out_of_samples() const { return static_cast<int>(out_.samples.size()) >= settings_.max_samples; }
+
+  /// The range's far end first: a test that passes (or fails) everywhere is common (a wall of
+  /// level courses stands with any friction) and is settled in two evaluations. Then halve from a
+  /// passing start, double from a failing one. True when a bracket was found.
+  bool bracket() {
+    double x = settings_.start;
+    if (!take(x)) return false;
+    const bool first_passes = out_.samples.back().passes;
+    const double far = first_passes ? settings_.min_x : settings_.max_x;
+    if (far != x && !take(far)) return false;
+    if (out_.samples.back().passes == first_passes) {
+      out_.outcome = first_passes ? ThresholdOutcome::PassesAtMinimum : ThresholdOutcome::FailsAtMaximum;
+      out_.stop = (first_passes ? "passes at every " + settings_.name + " tried, down to "
+                                : "fails at every " + settings_.name + " tried, up to ") + format(far);
+      return false;
     }
-    const Chord chord = bisect_until != 0 ? Chord{middle(b), 0} : next_x(b, 0.4 * settings.tolerance * b.hi);
-    if (!take(chord.x)) return out;
-    const int side = out.samples.back().passes ? +1 : -1;
-    if (side == bisect_until) bisect_until = 0;
-    if (chord.clamped_at == side) bisect_until = -side;
-    update(b, out.samples.back());
+    for (;;) {
+      const double next = first_passes ? 0.5 * x : 2.0 * x;
+      if ((first_passes ? next <= settings_.min_x : next >= settings_.max_x) || out_of_samples()) break;
+      x = next;
+      if (!take(x)) return false;
+      if (out_.samples.back().passes != first_passes) break;
+    }
+    if (!out_.lower || !out_.upper) {
+      out_.outcome = ThresholdOutcome::Failed;
+      out_.stop = "no bracket within " + std::to_string(settings_.max_samples) + " evaluations";
+      return false;
+    }
+    return true;
   }
-  out.converged = true;
-  out.stop = "bracketed within the tolerance: [" + format(b.lo) + ", " + format(b.hi) + "]";
-  return out;
+
+  /// Narrows the bracket to the tolerance by chords, with bisections where they would creep.
+  void narrow() {
+    Bracket b;
+    b.lo = *out_.lower;
+    b.hi = *out_.upper;
+    for (const ThresholdSample& s : out_.samples) {
+      if (s.x == b.lo) b.g_lo = s.value;
+      if (s.x == b.hi) b.g_hi = s.value;
+    }
+    out_.outcome = ThresholdOutcome::Bracketed;
+    // A chord step clamped next to an end is meant to cross the root; when it does not, the
+    // chord points at that end for another reason (g flat there): bisect until a sample lands on
+    // the other side of the root (+1: until one passes, -1: until one fails).
+    int bisect_until = 0;
+    while (b.hi - b.lo > settings_.tolerance * b.hi) {
+      if (out_of_samples()) {
+        out_.stop = "stopped at " + std::to_string(settings_.max_samples) + " evaluations with the bracket [" +
+                    format(b.lo) + ", " + format(b.hi) + "]";
+        return;
+      }
+      const Chord chord = bisect_until != 0 ? Chord{middle(b), 0} : next_x(b, 0.4 * settings_.tolerance * b.hi);
+      if (!take(chord.x)) return;
+      const int side = out_.samples.back().passes ? +1 : -1;
+      if (side == bisect_until) bisect_until = 0;
+      if (chord.clamped_at == side) bisect_until = -side;
+      update(b, out_.samples.back());
+    }
+    out_.converged = true;
+    out_.stop = "bracketed within the tolerance: [" + format(b.lo) + ", " + format(b.hi) + "]";
+  }
+
+  const std::function<ThresholdSample(double x)>& evaluate_;
+  const ThresholdSettings& settings_;
+  Threshold out_;
+};
+
+}  // namespace
+
+Threshold find_threshold(const std::function<ThresholdSample(double x)>& evaluate, const ThresholdSettings& settings) {
+  return Search(evaluate, settings).run();
 }
 
 }  // namespace rbla::analysis
