@@ -88,6 +88,8 @@ TEST(Sweep, ParametersThatDoNotApplyAreRefusedBeforeAnythingRuns) {
   EXPECT_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::Friction, 0.0, 0.5, 3}}), rbla::model::ModelError);
   EXPECT_NO_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::Friction, 0.1, 0.5, 3}}));
   EXPECT_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::UnitWeightFactor, 0.0, 1.0, 2}}), rbla::model::ModelError);
+  EXPECT_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::UnitWeightFactor, 1e-300, 1e300, 3}}), rbla::model::ModelError);
+  EXPECT_NO_THROW(rbla::analysis::check_sweep(m, {{SweepParameter::UnitWeightFactor, 0.5, 2.0, 3}}));
   // A forced planar formulation cannot follow a load turned out of its plane: refused before the
   // first point runs (it failed at the second point, without a summary).
   auto planar = m;

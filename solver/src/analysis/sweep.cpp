@@ -63,6 +63,10 @@ void set_settlement(model::Model& m, double tilt_degrees, double azimuth_degrees
 
 }  // namespace
 
+/// The largest unit-weight factor a sweep applies: a factor of 1e300 made unit weights of 1e301,
+/// far beyond the schema's 1e12, and no study of masonry needs a thousand times its weight.
+constexpr double kLargestWeightFactor = 1000.0;
+
 const char* to_string(SweepParameter parameter) {
   for (const Named& n : kNames) {
     if (n.parameter == parameter) return n.name;
@@ -115,7 +119,8 @@ model::Model model_at(const model::Model& model, const std::vector<SweepAxis>& a
       case SweepParameter::Friction:
       case SweepParameter::FrictionFactor: set_friction(m, parameter, value); break;
       case SweepParameter::UnitWeightFactor:
-        require(value > 0.0, parameter, "must be positive (at 0 every block is weightless: nothing to carry)");
+        require(value > 0.0 && value <= kLargestWeightFactor, parameter,
+                "must be in (0, 1000]: at 0 every block is weightless, and no study needs more");
         for (auto& block : m.blocks) block.unit_weight *= value;
         break;
       case SweepParameter::SeismicAngle: {
