@@ -90,6 +90,12 @@ TEST(ReaderLimits, DefaultsAcceptAModelAndEachLimitStopsAtItsPlace) {
   depth.max_depth = 4;
   EXPECT_TRUE(has_issue_at(model_issues(text, depth), "/blocks/0/faces/0", "deeper than the limit of 4 levels"))
       << describe_issues(model_issues(text, depth));
+  // Every value counts, containers too (the text's members in name order): the root, /blocks,
+  // /blocks/0, and the fourth, /blocks/0/faces, is one too many.
+  InputLimits values;
+  values.max_values = 3;
+  EXPECT_TRUE(has_issue_at(model_issues(text, values), "/blocks/0/faces", "--max-values"))
+      << describe_issues(model_issues(text, values));
   InputLimits bytes;
   bytes.max_bytes = text.size() - 1;
   EXPECT_TRUE(has_issue_at(model_issues(text, bytes), "", "--max-input-bytes"));

@@ -24,6 +24,10 @@ struct InputLimits {
   std::uint64_t max_vertices = 10000000;
   /// Entries of /interfaces (schema: 10 000 000).
   std::uint64_t max_interfaces = 1000000;
+  /// JSON values of every kind (numbers, strings, arrays, objects): the parsed document takes
+  /// about 16 bytes a value, more than the two or three bytes of text a number may take, so the
+  /// byte limit alone let 240 MB of "1," grow to 4 GB. A 30 000-block model has 2.1 million.
+  std::uint64_t max_values = 50000000;
 };
 
 /// One limit as the command line offers it: its option, what it counts, its field and the largest
@@ -35,13 +39,14 @@ struct InputLimitInfo {
   std::uint64_t ceiling;
 };
 
-inline constexpr std::array<InputLimitInfo, 6> kInputLimits{{
+inline constexpr std::array<InputLimitInfo, 7> kInputLimits{{
     {"--max-input-bytes", "bytes of model JSON", &InputLimits::max_bytes, UINT64_MAX},
     {"--max-depth", "levels of nested arrays and objects", &InputLimits::max_depth, 1000000},
     {"--max-string-bytes", "bytes in one string or property name", &InputLimits::max_string_bytes, UINT64_MAX},
     {"--max-blocks", "blocks", &InputLimits::max_blocks, 1000000},
     {"--max-vertices", "vertices of all blocks together", &InputLimits::max_vertices, UINT64_MAX},
     {"--max-interfaces", "interfaces", &InputLimits::max_interfaces, 10000000},
+    {"--max-values", "JSON values (numbers, strings, arrays and objects)", &InputLimits::max_values, UINT64_MAX},
 }};
 
 /// The entry of kInputLimits for `field` (every field has one).

@@ -110,6 +110,9 @@ class GuardedBuilder {
   /// whose name was just read. Returns where it went.
   template <typename Value>
   json* put(Value&& value) {
+    if (++values_ > limits_.max_values) {
+      throw ModelError(pointer(), "more than " + limit_text(&InputLimits::max_values, limits_.max_values));
+    }
     if (frames_.empty()) {
       root_ = json(std::forward<Value>(value));
       return &root_;
@@ -176,7 +179,7 @@ class GuardedBuilder {
   json root_;
   std::vector<Frame> frames_;
   json* member_ = nullptr;
-  std::uint64_t blocks_ = 0, vertices_ = 0, interfaces_ = 0;
+  std::uint64_t blocks_ = 0, vertices_ = 0, interfaces_ = 0, values_ = 0;
 };
 
 /// nlohmann's message without its "[json.exception...]" prefix, with the text it quotes ("last
