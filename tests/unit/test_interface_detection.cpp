@@ -89,7 +89,7 @@ TEST(InterfaceDetection, AJointClosedAcrossAWideGapIsSaid) {
   ASSERT_NE(said, wide.warnings.end());
   EXPECT_NE(said->message.find("2 detected joints"), std::string::npos) << said->message;
   EXPECT_NEAR(said->magnitude, 0.05, 1e-9);
-  EXPECT_EQ(wide.detection_summary.wide_gap_joints, 2u);
+  EXPECT_EQ(wide.detection_summary.wide_gaps.joints, 2u);
   const Model narrow = channel(0.001);
   EXPECT_EQ(narrow.interfaces.size(), 3u);
   EXPECT_EQ(wide_gap_warning(narrow), narrow.warnings.end());

@@ -227,7 +227,9 @@ TEST(NonAssociative, TheCircumscribedPyramidIsNamedAsAnotherFrictionLaw) {
       return w.code == "non_associative_circumscribed_pyramid";
     });
     EXPECT_EQ(warned != n.warnings.end(), cone == "pyramid_circumscribed") << cone;
-    if (warned != n.warnings.end()) EXPECT_NE(warned->message.find("1.41 mu N"), std::string::npos) << warned->message;
+    if (warned != n.warnings.end()) {
+      EXPECT_NE(warned->message.find("1.41 mu N"), std::string::npos) << warned->message;
+    }
   }
 }
 

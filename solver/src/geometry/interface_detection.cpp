@@ -215,15 +215,14 @@ struct Collector {
   std::vector<model::NearMiss> near_misses;
   std::vector<double> gaps, angles, tolerances;
   double largest_gap_fraction = 0.0;
-  std::size_t wide_gap_joints = 0;
-  model::DetectionSummary widest;  ///< only its widest_gap fields
+  model::WideGaps wide_gaps;
   std::size_t face_pairs_tested = 0;
 };
 
 /// A joint accepted across a gap above this fraction of its tolerance is counted and the widest
 /// reported (prepare_model warns): real CAD joints stay far below it (COMPAS assemblies at most
 /// 13 %, a faceted generated dome 49.5 %), while a block drawn a few centimetres clear of a wall
-/// is glued to it at 75 % and clamped there.
+/// is glued to it at 80 % and clamped there.
 constexpr double kWideGapFraction = 0.5;
 
 /// What comparing two patches gave: accepted pieces go straight to the collector.
@@ -264,14 +263,10 @@ PairOutcome compare(const model::Model& m, int a, int b, const FacePatch& pa, co
       out.angles.push_back(g.angle_degrees);
       out.tolerances.push_back(g.tolerance);
       if (g.tolerance > 0.0) out.largest_gap_fraction = std::max(out.largest_gap_fraction, distance / g.tolerance);
+      model::WideGaps& wide = out.wide_gaps;
       if (distance > kWideGapFraction * g.tolerance) {
-        ++out.wide_gap_joints;
-        if (distance > out.widest.widest_gap) {
-          out.widest.widest_gap = distance;
-          out.widest.widest_gap_tolerance = g.tolerance;
-          out.widest.widest_gap_block_a = a;
-          out.widest.widest_gap_block_b = b;
-        }
+        ++wide.joints;
+        if (distance > wide.widest) wide = {wide.joints, distance, g.tolerance, a, b};
       }
       result.accepted = true;
     } else if (distance < result.closest.distance) {
@@ -331,11 +326,7 @@ model::DetectionSummary summarise(Collector& c, const DetectionTolerances& tol, 
   s.gaps = spread_of(c.gaps);
   s.angles = spread_of(c.angles);
   s.largest_gap_fraction = c.largest_gap_fraction;
-  s.wide_gap_joints = c.wide_gap_joints;
-  s.widest_gap = c.widest.widest_gap;
-  s.widest_gap_tolerance = c.widest.widest_gap_tolerance;
-  s.widest_gap_block_a = c.widest.widest_gap_block_a;
-  s.widest_gap_block_b = c.widest.widest_gap_block_b;
+  s.wide_gaps = c.wide_gaps;
   s.candidate_block_pairs = candidates;
   s.face_pairs_tested = c.face_pairs_tested;
   s.merged_faces = merged;

@@ -346,20 +346,19 @@ void prepare_given_interfaces(model::Model& m, double tolerance, std::vector<Inp
 /// Joints accepted across a gap near their tolerance are analysed as touching: a block drawn a
 /// little clear of a wall is held by it. Said once, with the widest.
 void warn_about_wide_gaps(model::Model& m) {
-  const model::DetectionSummary& s = m.detection_summary;
-  if (s.wide_gap_joints == 0) return;
-  const double length = m.units.length_to_m;
+  const model::WideGaps& w = m.detection_summary.wide_gaps;
+  if (w.joints == 0) return;
+  const std::string share = std::to_string(static_cast<int>(std::lround(100.0 * w.widest / w.tolerance)));
   m.warnings.push_back(
       {"joints_closed_across_gaps",
-       std::to_string(s.wide_gap_joints) +
-           (s.wide_gap_joints == 1 ? " detected joint was accepted across a gap above half its tolerance"
-                                   : " detected joints were accepted across gaps above half their tolerance") +
-           ", the widest " + format(s.widest_gap / length) + " " +
-           m.units.length_name + " between blocks '" + m.blocks[s.widest_gap_block_a].id + "' and '" +
-           m.blocks[s.widest_gap_block_b].id + "' (" + std::to_string(static_cast<int>(std::lround(100.0 * s.widest_gap / s.widest_gap_tolerance))) +
+       std::to_string(w.joints) +
+           (w.joints == 1 ? " detected joint was accepted across a gap above half its tolerance"
+                          : " detected joints were accepted across gaps above half their tolerance") +
+           ", the widest " + format(w.widest / m.units.length_to_m) + " " + m.units.length_name + " between blocks '" +
+           m.blocks[w.block_a].id + "' and '" + m.blocks[w.block_b].id + "' (" + share +
            " % of its tolerance): such joints are analysed as touching. A gap that wide may be a real opening (a "
            "block drawn clear of a wall would be held by it); check them, or lower detection.joint_tolerance",
-       "/detection/joint_tolerance", s.widest_gap});
+       "/detection/joint_tolerance", w.widest});
 }
 
 /// Interface detection over the block pairs the CAD gave no interface for; the interfaces found

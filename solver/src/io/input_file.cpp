@@ -36,13 +36,6 @@ std::string too_large(const std::string& path, std::uint64_t max_bytes) {
 
 }  // namespace
 
-std::string nul_byte(const std::string& path, std::uint64_t offset) {
-  // JSON text never holds a NUL byte (in a string it is written \u0000), and the parser would
-  // take one for the end of the text, ignoring whatever follows it.
-  return "malformed JSON: " + quoted_path(path) + " holds a NUL byte at byte " + std::to_string(offset) +
-         "; a model is JSON text";
-}
-
 std::string quoted_path(const std::string& path) {
   return path == "-" ? std::string("standard input") : "'" + printable(path, 1000) + "'";
 }
@@ -76,7 +69,7 @@ class InputFile::Buffer : public std::streambuf {
     if (n < 0) fail(path_, "read error", errno);
     if (n == 0) return traits_type::eof();
     if (const void* nul = std::memchr(data_.data(), '\0', static_cast<std::size_t>(n))) {
-      throw model::ModelError("", nul_byte(path_, read_ + static_cast<std::uint64_t>(static_cast<const char*>(nul) - data_.data())));
+      throw model::ModelError("", nul_byte_text(quoted_path(path_), read_ + static_cast<std::uint64_t>(static_cast<const char*>(nul) - data_.data())));
     }
     read_ += static_cast<std::uint64_t>(n);
     if (read_ > max_bytes_) throw model::ModelError("", too_large(path_, max_bytes_));

@@ -25,9 +25,6 @@ struct FileIdentity {
 /// file); empty when nothing is there or it cannot be examined.
 std::optional<FileIdentity> identity_of(const std::string& path);
 
-/// The message for a NUL byte at `offset` of the model read from `path`.
-std::string nul_byte(const std::string& path, std::uint64_t offset);
-
 /// How a path is named in messages: quoted and escaped, or "standard input" for "-".
 std::string quoted_path(const std::string& path);
 

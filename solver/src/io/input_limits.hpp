@@ -63,4 +63,11 @@ inline std::string limit_text(std::uint64_t InputLimits::*field, std::uint64_t v
   return "the limit of " + std::to_string(value) + " " + info.counts + " (raise it with " + info.option + ")";
 }
 
+/// The refusal of a NUL byte at `offset` of `source` (a quoted path, "standard input", "the
+/// text"): JSON text never holds one (in a string it is written \u0000), and the parser would take
+/// it for the end of the text, ignoring whatever follows.
+inline std::string nul_byte_text(const std::string& source, std::uint64_t offset) {
+  return "malformed JSON: " + source + " holds a NUL byte at byte " + std::to_string(offset) + "; a model is JSON text";
+}
+
 }  // namespace rbla::io

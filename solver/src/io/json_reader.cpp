@@ -213,10 +213,7 @@ json read_json(std::string_view text, const InputLimits& limits) {
     throw ModelError("", "the model is " + std::to_string(text.size()) + " bytes, more than " +
                              limit_text(&InputLimits::max_bytes, limits.max_bytes));
   }
-  // The parser would take a NUL byte for the end of the text (JSON writes it \u0000 in strings).
-  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
-    throw ModelError("", "malformed JSON: a NUL byte at byte " + std::to_string(nul) + "; a model is JSON text");
-  }
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) throw ModelError("", nul_byte_text("the text", nul));
   return parse_guarded(text, limits);
 }
 

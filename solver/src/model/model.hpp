@@ -170,6 +170,14 @@ struct Spread {
 };
 
 /// What interface detection did, for `rbla info` and the result JSON.
+/// Accepted joints whose gap is above half their tolerance, and the widest of them.
+struct WideGaps {
+  std::size_t joints = 0;
+  double widest = 0.0;     ///< m
+  double tolerance = 0.0;  ///< m, the widest one's
+  int block_a = -1, block_b = -1;
+};
+
 struct DetectionSummary {
   bool ran = false;
   bool per_joint = true;             ///< tolerances from each joint's size (else one fixed tolerance)
@@ -180,10 +188,7 @@ struct DetectionSummary {
   Spread gaps;                       ///< m, largest plane-to-plane distance over each accepted joint
   Spread angles;                     ///< degrees, deviation from opposite of each accepted joint
   double largest_gap_fraction = 0.0; ///< the largest gap of an accepted joint over its tolerance
-  /// Accepted joints whose gap is above half their tolerance, and the widest of them (m; -1: none).
-  std::size_t wide_gap_joints = 0;
-  double widest_gap = 0.0, widest_gap_tolerance = 0.0;
-  int widest_gap_block_a = -1, widest_gap_block_b = -1;
+  WideGaps wide_gaps;
   std::size_t candidate_block_pairs = 0;
   std::size_t face_pairs_tested = 0;
   std::size_t merged_faces = 0;      ///< faces merged into a neighbouring coplanar face of their block
