@@ -3,6 +3,7 @@
 // functions whose maximum lies inside the cone, on its rim, at a kink, and with a tilted
 // functional w.
 #include "analysis/cone_search.hpp"
+#include "model/angles.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,7 +21,7 @@ using rbla::analysis::ConeSample;
 using rbla::analysis::DirectionCone;
 using rbla::analysis::find_cone_maximum;
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 
 /// A concave, positively homogeneous function with its supergradient.
 struct Concave {

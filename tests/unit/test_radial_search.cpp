@@ -2,6 +2,7 @@
 // smallest radius is known in closed form: ellipses, polygons around an off-centre point, sets
 // unbounded along some directions.
 #include "analysis/radial_search.hpp"
+#include "model/angles.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +17,7 @@ using rbla::analysis::minimise_radius;
 using rbla::analysis::RadialSample;
 using rbla::analysis::RadialSearchSettings;
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 RadialSample sample(double angle, double radius) {

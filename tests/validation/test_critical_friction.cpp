@@ -5,6 +5,7 @@
 // only one joint scaled, that joint alone needs mu >= tan(beta).
 #include "analysis/critical_friction.hpp"
 #include "validation_helpers.hpp"
+#include "model/angles.hpp"
 
 #include <cmath>
 #include <string>
@@ -16,7 +17,7 @@ namespace {
 
 using rbla::analysis::ThresholdOutcome;
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 
 /// A squat block (1 x 1 x 0.2) on a fixed base, both tilted by `beta` about the y axis: the bed
 /// joint slopes at beta, and the centroid stays well inside the contact (tipping would need

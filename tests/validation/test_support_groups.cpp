@@ -12,6 +12,7 @@
 // between them can be certain.
 #include "analysis/support_groups.hpp"
 #include "validation_helpers.hpp"
+#include "model/angles.hpp"
 
 #include <string>
 #include <vector>
@@ -21,7 +22,7 @@ namespace {
 
 using rbla::analysis::SupportGroupRanking;
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 
 json spanning_block(double a, double b, double L, double h) {
   json blocks = json::array({box_block("left", -0.5, -0.5, -0.5, a, 1.5, 0.0, "fixed"),

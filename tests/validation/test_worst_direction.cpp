@@ -9,13 +9,14 @@
 // has a local minimum at each edge normal, a/h_c, and the global one at the nearest edge.
 #include "analysis/worst_direction.hpp"
 #include "validation_helpers.hpp"
+#include "model/angles.hpp"
 
 #include <cmath>
 
 namespace rbla::validation {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 
 /// Block [-1,1]x[-0.7,0.7]x[0,2] (centroid height 1) on a base whose top meets it over
 /// [-0.4,1.0]x[-0.6,0.7]: edges at 1.0 (+x), 0.7 (+y), 0.4 (-x), 0.6 (-y) from the centroid.

@@ -15,6 +15,7 @@
 #include "analysis/sweep.hpp"
 #include "analysis/worst_settlement.hpp"
 #include "validation_helpers.hpp"
+#include "model/angles.hpp"
 
 #include <Eigen/Geometry>
 
@@ -29,7 +30,7 @@ using model::Vec3;
 using rbla::analysis::WorstSettlement;
 using rbla::analysis::WorstSettlementSettings;
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 
 json settling_block(double a, double L, double h) {
   const double g = 1e-3;

@@ -2,6 +2,7 @@
 
 #include "analysis/text.hpp"
 #include "rbla/conic/solver.hpp"
+#include "model/angles.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
@@ -13,7 +14,7 @@
 namespace rbla::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 
 using Vec3 = Eigen::Vector3d;
 

@@ -4,6 +4,7 @@
 #include "analysis/solve_steps.hpp"
 #include "geometry/polyhedron.hpp"
 #include "model/errors.hpp"
+#include "model/angles.hpp"
 
 #include <Eigen/SparseCore>
 
@@ -184,8 +185,8 @@ PointSpec friction_variables(const FormulationOptions& options, double mu, const
   const bool pyramid = options.cone != model::ConeKind::Exact;
   const int m = options.pyramid_faces;
   // Circumscribed pyramid: its faces touch the cone, so its edges are 1/cos(pi/m) further out.
-  const double edge_factor = options.cone == model::ConeKind::PyramidCircumscribed ? 1.0 / std::cos(M_PI / m) : 1.0;
-  auto edge = [&](int j) { return std::cos(2.0 * M_PI * j / m) * t1 + std::sin(2.0 * M_PI * j / m) * t2; };
+  const double edge_factor = options.cone == model::ConeKind::PyramidCircumscribed ? 1.0 / std::cos(model::kPi / m) : 1.0;
+  auto edge = [&](int j) { return std::cos(2.0 * model::kPi * j / m) * t1 + std::sin(2.0 * model::kPi * j / m) * t2; };
 
   if (options.friction_set == FrictionSet::Cone) {
     if (options.planar) {

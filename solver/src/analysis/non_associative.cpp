@@ -2,6 +2,7 @@
 
 #include "analysis/mechanism.hpp"
 #include "analysis/unloaded_blocks.hpp"
+#include "model/angles.hpp"
 
 #include <Eigen/QR>
 
@@ -490,7 +491,7 @@ void warn_about_spread(const model::Model& m, const Formulation& f, AnalysisResu
 /// than Coulomb's cone allows and be on the unsafe side of Coulomb's non-associative states.
 void warn_about_circumscribed_pyramid(const model::Model& m, AnalysisResult& result) {
   if (m.analysis.cone != model::ConeKind::PyramidCircumscribed) return;
-  const double reach = 1.0 / std::cos(M_PI / m.analysis.pyramid_faces);
+  const double reach = 1.0 / std::cos(model::kPi / m.analysis.pyramid_faces);
   result.warnings.push_back(
       {"non_associative_circumscribed_pyramid",
        "with the circumscribed pyramid a contact point may carry shear up to " + format(reach, 3) +

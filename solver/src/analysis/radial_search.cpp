@@ -1,4 +1,5 @@
 #include "analysis/radial_search.hpp"
+#include "model/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,7 @@
 namespace rbla::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct Vec2 {

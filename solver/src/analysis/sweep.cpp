@@ -1,13 +1,13 @@
 #include "analysis/sweep.hpp"
 
 #include "model/errors.hpp"
+#include "model/angles.hpp"
 
 #include <cmath>
 
 namespace rbla::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// The schema's largest friction coefficient.
 constexpr double kLargestFriction = 100.0;
 
@@ -56,7 +56,7 @@ void set_friction(model::Model& m, SweepParameter parameter, double value) {
 /// the azimuth.
 void set_settlement(model::Model& m, double tilt_degrees, double azimuth_degrees) {
   const auto [x, y] = m.horizontal_axes();
-  const double tilt = tilt_degrees * kPi / 180.0, azimuth = azimuth_degrees * kPi / 180.0;
+  const double tilt = model::radians(tilt_degrees), azimuth = model::radians(azimuth_degrees);
   const model::Vec3 sideways = std::cos(azimuth) * x + std::sin(azimuth) * y;
   m.analysis.settlement_direction = (std::cos(tilt) * m.gravity.normalized() + std::sin(tilt) * sideways).normalized();
 }
@@ -127,7 +127,7 @@ model::Model model_at(const model::Model& model, const std::vector<SweepAxis>& a
         require(!settlement && m.live_loads.empty(), parameter,
                 "applies to a load_multiplier analysis whose live load is the seismic load only");
         const auto [x, y] = m.horizontal_axes();
-        const double angle = value * kPi / 180.0;
+        const double angle = model::radians(value);
         m.analysis.seismic_direction = std::cos(angle) * x + std::sin(angle) * y;
         break;
       }

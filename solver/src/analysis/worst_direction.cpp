@@ -3,6 +3,7 @@
 #include "analysis/text.hpp"
 #include "analysis/search_analyses.hpp"
 #include "model/errors.hpp"
+#include "model/angles.hpp"
 
 #include <cmath>
 #include <limits>
@@ -11,7 +12,7 @@
 namespace rbla::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 
 void check_request(const model::Model& m) {
   if (m.analysis.type != model::AnalysisType::LoadMultiplier) {
@@ -65,7 +66,7 @@ void conclude(WorstDirection& w, const RadialMinimum& search, const RadialSearch
   w.stop = search.stop;
   if (search.failed) {
     w.verdict = w.evaluations.back().verdict;
-    w.verdict_text = "The search stopped at " + format(w.evaluations.back().angle * 180.0 / kPi) +
+    w.verdict_text = "The search stopped at " + format(model::degrees(w.evaluations.back().angle)) +
                      " degrees: " + search.stop;
     return;
   }
@@ -80,7 +81,7 @@ void conclude(WorstDirection& w, const RadialMinimum& search, const RadialSearch
   w.angle = best.angle;
   w.lower_bound = search.lower_bound;
   w.certified = search.converged && settings.convex;
-  w.verdict_text = "Weakest horizontal direction at " + format(best.angle * 180.0 / kPi) +
+  w.verdict_text = "Weakest horizontal direction at " + format(model::degrees(best.angle)) +
                    " degrees: collapse at load multiplier alpha = " + format(best.radius) +
                    (w.certified ? ", the global minimum to within " + format(settings.tolerance * 100.0) + " %"
                                 : std::string(", not certified as the global minimum (") + search.stop + ")") +

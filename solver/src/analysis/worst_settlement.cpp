@@ -4,6 +4,7 @@
 #include "analysis/text.hpp"
 #include "analysis/search_analyses.hpp"
 #include "model/errors.hpp"
+#include "model/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,9 +14,9 @@
 namespace rbla::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 
-double degrees(double radians) { return radians * 180.0 / kPi; }
+using rbla::model::degrees;
 
 void check_request(const model::Model& m) {
   if (m.analysis.type != model::AnalysisType::Settlement) {

@@ -18,6 +18,7 @@
 
 #include "analysis/cone_search.hpp"
 #include "analysis/limit_analysis.hpp"
+#include "model/angles.hpp"
 
 #include <optional>
 #include <string>
@@ -38,7 +39,7 @@ struct SettlementEvaluation {
 };
 
 struct WorstSettlementSettings {
-  double cone_angle = 30.0 * 3.14159265358979323846 / 180.0;  ///< rad, half angle around gravity
+  double cone_angle = model::radians(30.0);  ///< rad, half angle around gravity
   ConeSearchSettings search;
 };
 

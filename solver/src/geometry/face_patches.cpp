@@ -1,6 +1,7 @@
 #include "geometry/face_patches.hpp"
 
 #include "geometry/polyhedron.hpp"
+#include "model/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -224,8 +225,8 @@ bool try_add(const model::Block& block, const BlockFaces& bf, Growth& g, int fac
 /// Grows a patch from `seed` over neighbours that keep it flat (see face_patches()).
 std::vector<int> grow(const model::Block& block, const BlockFaces& bf, int seed, const std::vector<int>& assigned,
                       const PatchLimits& limits) {
-  const double cos_limit = std::cos(limits.angle_degrees * M_PI / 180.0);
-  const double cos_pair_limit = std::cos(limits.triangle_pair_angle_degrees * M_PI / 180.0);
+  const double cos_limit = std::cos(model::radians(limits.angle_degrees));
+  const double cos_pair_limit = std::cos(model::radians(limits.triangle_pair_angle_degrees));
   Growth growth;
   growth.members = {seed};
   growth.area = bf.area_vectors[seed];

@@ -3,6 +3,7 @@
 #include "geometry/polygon2d.hpp"
 #include "geometry/polyhedron.hpp"
 #include "geometry/sweep.hpp"
+#include "model/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -69,7 +70,7 @@ model::Spread spread_of(std::vector<double>& values) {
 
 Vec3 given_interface_normal(const model::Model& m, int a, int b, const Vec3& n, const Vec3& c, double tolerance) {
   const model::Block& block = m.blocks[a];
-  const double cos_limit = std::cos(10.0 * M_PI / 180.0);
+  const double cos_limit = std::cos(model::radians(10.0));
   double best = std::numeric_limits<double>::infinity();
   Vec3 normal = Vec3::Zero();
   for (const auto& face : block.faces) {
@@ -238,7 +239,7 @@ PairOutcome compare(const model::Model& m, int a, int b, const FacePatch& pa, co
   PairOutcome result;
   result.closest.distance = std::numeric_limits<double>::infinity();
   PairGeometry g;
-  g.angle_degrees = std::acos(std::clamp(-pa.normal.dot(pb.normal), -1.0, 1.0)) * 180.0 / M_PI;
+  g.angle_degrees = model::degrees(std::acos(std::clamp(-pa.normal.dot(pb.normal), -1.0, 1.0)));
   if (g.angle_degrees > kNearMissFactor * tol.angle_degrees) return result;
   g.tolerance = tol.distance(pa.size, pb.size);
   const double range = kNearMissFactor * g.tolerance;
@@ -344,7 +345,7 @@ DetectionOutcome detect_interfaces(const model::Model& m, const std::vector<std:
   const std::vector<std::pair<int, int>> candidates = candidate_pairs(m, bp);
   const std::set<std::pair<int, int>> skip(skip_pairs.begin(), skip_pairs.end());
   // Merged patches' parts may be nearer opposite than the merged normal: keep the pre-test loose.
-  const double cos_near = std::cos(std::min(2.0 * kNearMissFactor * tol.angle_degrees, 90.0) * M_PI / 180.0);
+  const double cos_near = std::cos(model::radians(std::min(2.0 * kNearMissFactor * tol.angle_degrees, 90.0)));
   Collector collected;
   for (const auto& [a, b] : candidates) {
     if (skip.count({a, b})) continue;

@@ -2,6 +2,7 @@
 
 #include "geometry/polyhedron.hpp"
 #include "geometry/sweep.hpp"
+#include "model/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -235,7 +236,7 @@ double winding_number(const model::Block& block, const Vec3& p) {
       total += 2.0 * std::atan2(numerator, denominator);
     }
   }
-  return total / (4.0 * M_PI);
+  return total / (4.0 * model::kPi);
 }
 
 }  // namespace

@@ -25,8 +25,6 @@ json evaluation_json(const analysis::FrictionEvaluation& e) {
   return out;
 }
 
-std::string number(double value, const char* format = "%.1f") { return number_text(value, format); }
-
 /// Plot area of the alpha(mu) picture: x (friction or factor) from 0 to x_max, alpha from 0 to y_max.
 struct Axes {
   double left = 70, top = 30, width = 560, height = 360, x_max = 0, y_max = 0;
@@ -35,17 +33,17 @@ struct Axes {
 };
 
 void append_axes(std::string& out, const Axes& a, const std::string& x_label) {
-  out += "<rect x=\"" + number(a.left) + "\" y=\"" + number(a.top) + "\" width=\"" + number(a.width) + "\" height=\"" +
-         number(a.height) + "\" fill=\"none\" stroke=\"#999\"/>\n";
+  out += "<rect x=\"" + number_text(a.left) + "\" y=\"" + number_text(a.top) + "\" width=\"" + number_text(a.width) + "\" height=\"" +
+         number_text(a.height) + "\" fill=\"none\" stroke=\"#999\"/>\n";
   for (int k = 0; k <= 4; ++k) {
-    out += "<text x=\"" + number(a.px(a.x_max * k / 4) - 10) + "\" y=\"" + number(a.top + a.height + 16) +
-           "\" font-size=\"11\">" + number(a.x_max * k / 4, "%.3g") + "</text>\n";
-    out += "<text x=\"" + number(a.left - 40) + "\" y=\"" + number(a.py(a.y_max * k / 4) + 4) + "\" font-size=\"11\">" +
-           number(a.y_max * k / 4, "%.3g") + "</text>\n";
+    out += "<text x=\"" + number_text(a.px(a.x_max * k / 4) - 10) + "\" y=\"" + number_text(a.top + a.height + 16) +
+           "\" font-size=\"11\">" + number_text(a.x_max * k / 4, "%.3g") + "</text>\n";
+    out += "<text x=\"" + number_text(a.left - 40) + "\" y=\"" + number_text(a.py(a.y_max * k / 4) + 4) + "\" font-size=\"11\">" +
+           number_text(a.y_max * k / 4, "%.3g") + "</text>\n";
   }
-  out += "<text x=\"" + number(a.left + a.width / 2 - 20) + "\" y=\"" + number(a.top + a.height + 34) +
+  out += "<text x=\"" + number_text(a.left + a.width / 2 - 20) + "\" y=\"" + number_text(a.top + a.height + 34) +
          "\" font-size=\"13\">" + x_label + "</text>\n";
-  out += "<text x=\"" + number(a.left) + "\" y=\"" + number(a.top - 10) + "\" font-size=\"13\">alpha</text>\n";
+  out += "<text x=\"" + number_text(a.left) + "\" y=\"" + number_text(a.top - 10) + "\" font-size=\"13\">alpha</text>\n";
 }
 
 }  // namespace
@@ -85,21 +83,21 @@ std::string critical_friction_svg(const analysis::CriticalFriction& c) {
                     "<title>alpha(mu)</title>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   append_axes(out, a, c.uniform_friction ? "friction coefficient mu" : "friction factor");
   if (c.target_alpha) {
-    out += "<line x1=\"" + number(a.px(0)) + "\" x2=\"" + number(a.px(a.x_max)) + "\" y1=\"" + number(a.py(*c.target_alpha)) +
-           "\" y2=\"" + number(a.py(*c.target_alpha)) + "\" stroke=\"#888\" stroke-dasharray=\"4 3\"/>\n";
+    out += "<line x1=\"" + number_text(a.px(0)) + "\" x2=\"" + number_text(a.px(a.x_max)) + "\" y1=\"" + number_text(a.py(*c.target_alpha)) +
+           "\" y2=\"" + number_text(a.py(*c.target_alpha)) + "\" stroke=\"#888\" stroke-dasharray=\"4 3\"/>\n";
   }
   if (c.factor_upper) {
     const double x = a.px(*c.factor_upper * unit);
-    out += "<line x1=\"" + number(x) + "\" x2=\"" + number(x) + "\" y1=\"" + number(a.py(0)) + "\" y2=\"" +
-           number(a.py(a.y_max)) + "\" stroke=\"#c0392b\" stroke-width=\"2\"/>\n";
+    out += "<line x1=\"" + number_text(x) + "\" x2=\"" + number_text(x) + "\" y1=\"" + number_text(a.py(0)) + "\" y2=\"" +
+           number_text(a.py(a.y_max)) + "\" stroke=\"#c0392b\" stroke-width=\"2\"/>\n";
   }
   for (const auto& e : c.evaluations) {
     const double y = e.load_multiplier ? std::max(0.0, *e.load_multiplier) : 0.0;
-    out += "<circle cx=\"" + number(a.px(e.factor * unit)) + "\" cy=\"" + number(a.py(y)) + "\" r=\"4\" " +
+    out += "<circle cx=\"" + number_text(a.px(e.factor * unit)) + "\" cy=\"" + number_text(a.py(y)) + "\" r=\"4\" " +
            (e.passes ? "fill=\"#1f5fa8\"" : "fill=\"white\" stroke=\"#c0392b\"") + "/>\n";
   }
-  const std::string caption = c.factor_upper ? "critical: " + (c.uniform_friction ? "mu = " + number(*c.factor_upper * unit, "%.6g")
-                                                                                  : "factor " + number(*c.factor_upper, "%.6g"))
+  const std::string caption = c.factor_upper ? "critical: " + (c.uniform_friction ? "mu = " + number_text(*c.factor_upper * unit, "%.6g")
+                                                                                  : "factor " + number_text(*c.factor_upper, "%.6g"))
                                              : std::string("no critical value in the range tried");
   out += "<text x=\"70\" y=\"450\" font-size=\"13\">" + caption + "; hollow: does not " +
          (c.target_alpha ? "carry the target" : "stand") + "</text>\n</svg>\n";

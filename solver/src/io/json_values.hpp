@@ -1,6 +1,7 @@
 // Small values written the same way in every section of the result JSON.
 #pragma once
 
+#include "model/angles.hpp"
 #include "model/model.hpp"
 
 #include <nlohmann/json.hpp>
@@ -11,6 +12,6 @@ namespace rbla::io {
 inline nlohmann::json vec3_json(const model::Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
 
 /// Angles are written in degrees.
-inline double degrees(double radians) { return radians * 180.0 / 3.14159265358979323846; }
+using model::degrees;
 
 }  // namespace rbla::io

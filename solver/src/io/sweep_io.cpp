@@ -41,8 +41,6 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-std::string number(double value, const char* format = "%.1f") { return number_text(value, format); }
-
 std::string quoted(const std::string& word) {
   std::string out = "'";
   for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -56,15 +54,15 @@ void append_panel(std::string& out, const analysis::SweepAxis& axis, std::size_t
   for (const SweepRow& r : rows) v_max = std::max(v_max, r.value.value_or(0.0));
   if (hi <= lo) hi = lo + 1.0;
   if (!(v_max > 0.0)) v_max = 1.0;
-  out += "<rect x=\"70\" y=\"" + number(top) + "\" width=\"560\" height=\"200\" fill=\"none\" stroke=\"#999\"/>\n";
-  out += "<text x=\"" + number(left) + "\" y=\"" + number(top + height + 30) + "\" font-size=\"13\">" +
-         analysis::to_string(axis.parameter) + " from " + number(lo, "%.4g") + " to " + number(hi, "%.4g") + "; " +
-         value_name + " up to " + number(v_max, "%.4g") + "</text>\n";
+  out += "<rect x=\"70\" y=\"" + number_text(top) + "\" width=\"560\" height=\"200\" fill=\"none\" stroke=\"#999\"/>\n";
+  out += "<text x=\"" + number_text(left) + "\" y=\"" + number_text(top + height + 30) + "\" font-size=\"13\">" +
+         analysis::to_string(axis.parameter) + " from " + number_text(lo, "%.4g") + " to " + number_text(hi, "%.4g") + "; " +
+         value_name + " up to " + number_text(v_max, "%.4g") + "</text>\n";
   for (const SweepRow& r : rows) {
     if (!r.value || a >= r.point.values.size()) continue;
     const double x = left + width * (r.point.values[a] - lo) / (hi - lo);
     const double y = top + height * (1.0 - *r.value / (1.1 * v_max));
-    out += "<circle cx=\"" + number(x) + "\" cy=\"" + number(y) + "\" r=\"3\" fill=\"#1f5fa8\"/>\n";
+    out += "<circle cx=\"" + number_text(x) + "\" cy=\"" + number_text(y) + "\" r=\"3\" fill=\"#1f5fa8\"/>\n";
   }
 }
 
@@ -167,7 +165,7 @@ std::string sweep_svg(const std::vector<analysis::SweepAxis>& axes, const std::v
                       const std::string& value_name) {
   const double panel = 250.0;
   std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"660\" height=\"" +
-                    number(40 + panel * std::max<std::size_t>(axes.size(), 1), "%.0f") +
+                    number_text(40 + panel * std::max<std::size_t>(axes.size(), 1), "%.0f") +
                     "\" font-family=\"sans-serif\">\n<title>sweep</title>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   for (std::size_t a = 0; a < axes.size(); ++a) append_panel(out, axes[a], a, rows, 20 + panel * a, value_name);
   return out + "</svg>\n";

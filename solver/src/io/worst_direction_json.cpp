@@ -2,6 +2,7 @@
 
 #include "io/json_values.hpp"
 #include "io/number_text.hpp"
+#include "model/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,7 @@ namespace rbla::io {
 namespace {
 
 using nlohmann::json;
-constexpr double kPi = 3.14159265358979323846;
+using rbla::model::kPi;
 
 json evaluation_json(const analysis::DirectionEvaluation& e) {
   json out{{"angle_deg", degrees(e.angle)},
@@ -50,8 +51,6 @@ json worst_direction_json(const analysis::WorstDirection& w, double tolerance) {
 
 namespace {
 
-std::string number(double value, const char* format = "%.1f") { return number_text(value, format); }
-
 struct Page {
   double x = 0.0, y = 0.0;
 };
@@ -65,12 +64,12 @@ struct Polar {
 };
 
 std::string circle(Page c, double r, const std::string& style) {
-  return "<circle cx=\"" + number(c.x) + "\" cy=\"" + number(c.y) + "\" r=\"" + number(r) + "\" " + style + "/>\n";
+  return "<circle cx=\"" + number_text(c.x) + "\" cy=\"" + number_text(c.y) + "\" r=\"" + number_text(r) + "\" " + style + "/>\n";
 }
 
 std::string line(Page a, Page b, const std::string& style) {
-  return "<line x1=\"" + number(a.x) + "\" y1=\"" + number(a.y) + "\" x2=\"" + number(b.x) + "\" y2=\"" +
-         number(b.y) + "\" " + style + "/>\n";
+  return "<line x1=\"" + number_text(a.x) + "\" y1=\"" + number_text(a.y) + "\" x2=\"" + number_text(b.x) + "\" y2=\"" +
+         number_text(b.y) + "\" " + style + "/>\n";
 }
 
 std::vector<analysis::DirectionEvaluation> by_angle(const analysis::WorstDirection& w) {
@@ -87,13 +86,13 @@ void append_grid(std::string& out, const Polar& p, double largest) {
   for (int ring = 1; ring <= 4; ++ring) {
     const double alpha = largest * ring / 4.0;
     out += circle(centre, p.scale * alpha, "fill=\"none\" stroke=\"#ddd\"");
-    out += "<text x=\"" + number(p.centre + 4) + "\" y=\"" + number(p.centre - p.scale * alpha - 3) +
-           "\" font-size=\"11\" fill=\"#888\">" + number(alpha, "%.3g") + "</text>\n";
+    out += "<text x=\"" + number_text(p.centre + 4) + "\" y=\"" + number_text(p.centre - p.scale * alpha - 3) +
+           "\" font-size=\"11\" fill=\"#888\">" + number_text(alpha, "%.3g") + "</text>\n";
   }
   for (int k = 0; k < 12; ++k) out += line(centre, p.at(k * kPi / 6.0, largest), "stroke=\"#eee\"");
   for (int k = 0; k < 4; ++k) {
     const Page label = p.at(k * kPi / 2.0, largest * 1.08);
-    out += "<text x=\"" + number(label.x - 10) + "\" y=\"" + number(label.y + 4) + "\" font-size=\"12\">" +
+    out += "<text x=\"" + number_text(label.x - 10) + "\" y=\"" + number_text(label.y + 4) + "\" font-size=\"12\">" +
            std::to_string(90 * k) + "&#176;</text>\n";
   }
 }
@@ -107,15 +106,15 @@ std::string worst_direction_svg(const analysis::WorstDirection& w) {
   if (!(largest > 0.0)) largest = 1.0;
   const double size = 640.0;
   const Polar p{size / 2.0, (size / 2.0 - 40.0) / largest};
-  std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + number(size, "%.0f") + "\" height=\"" +
-                    number(size + 40, "%.0f") + "\" font-family=\"sans-serif\">\n<title>alpha(theta)</title>\n";
+  std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + number_text(size, "%.0f") + "\" height=\"" +
+                    number_text(size + 40, "%.0f") + "\" font-family=\"sans-serif\">\n<title>alpha(theta)</title>\n";
   out += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   append_grid(out, p, largest);
   if (!points.empty()) {
     std::string polygon;
     for (const auto& e : points) {
       const Page q = p.at(e.angle, *e.load_multiplier);
-      polygon += number(q.x) + "," + number(q.y) + " ";
+      polygon += number_text(q.x) + "," + number_text(q.y) + " ";
     }
     out += "<polygon points=\"" + polygon + "\" fill=\"#4a90d9\" fill-opacity=\"0.15\" stroke=\"#4a90d9\"/>\n";
     for (const auto& e : points) out += circle(p.at(e.angle, *e.load_multiplier), 3.0, "fill=\"#1f5fa8\"");
@@ -127,11 +126,11 @@ std::string worst_direction_svg(const analysis::WorstDirection& w) {
   std::string caption = "alpha(theta), seen from above, theta from the first horizontal axis; " +
                         std::to_string(w.evaluations.size()) + " directions evaluated";
   if (w.alpha_min && w.angle) {
-    caption = "weakest at " + number(degrees(*w.angle)) + " deg: alpha = " + number(*w.alpha_min, "%.6g") +
-              (w.lower_bound ? " (certified >= " + number(*w.lower_bound, "%.6g") + ")" : " (not certified)") + "; " +
+    caption = "weakest at " + number_text(degrees(*w.angle)) + " deg: alpha = " + number_text(*w.alpha_min, "%.6g") +
+              (w.lower_bound ? " (certified >= " + number_text(*w.lower_bound, "%.6g") + ")" : " (not certified)") + "; " +
               std::to_string(w.evaluations.size()) + " directions evaluated";
   }
-  out += "<text x=\"10\" y=\"" + number(size + 25) + "\" font-size=\"13\">" + caption + "</text>\n</svg>\n";
+  out += "<text x=\"10\" y=\"" + number_text(size + 25) + "\" font-size=\"13\">" + caption + "</text>\n</svg>\n";
   return out;
 }
 

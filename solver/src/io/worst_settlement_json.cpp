@@ -24,8 +24,6 @@ json evaluation_json(const analysis::SettlementEvaluation& e, double force_unit)
   return out;
 }
 
-std::string number(double value, const char* format = "%.1f") { return number_text(value, format); }
-
 }  // namespace
 
 json worst_settlement_json(const model::Model& model, const analysis::WorstSettlement& w, double tolerance) {
@@ -108,43 +106,43 @@ std::string worst_settlement_svg(const analysis::WorstSettlement& w) {
     x = centre + scale * e.tilt * std::cos(e.azimuth);
     y = centre - scale * e.tilt * std::sin(e.azimuth);
   };
-  std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + number(size, "%.0f") + "\" height=\"" +
-                    number(size + 50, "%.0f") + "\" font-family=\"sans-serif\">\n<title>R / R0 over the settlement "
+  std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + number_text(size, "%.0f") + "\" height=\"" +
+                    number_text(size + 50, "%.0f") + "\" font-family=\"sans-serif\">\n<title>R / R0 over the settlement "
                     "directions</title>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  out += "<circle cx=\"" + number(centre) + "\" cy=\"" + number(centre) + "\" r=\"" + number(radius) +
+  out += "<circle cx=\"" + number_text(centre) + "\" cy=\"" + number_text(centre) + "\" r=\"" + number_text(radius) +
          "\" fill=\"none\" stroke=\"#999\"/>\n";
-  out += "<text x=\"" + number(centre + radius + 12) + "\" y=\"" + number(centre + 4) +
+  out += "<text x=\"" + number_text(centre + radius + 12) + "\" y=\"" + number_text(centre + 4) +
          "\" font-size=\"12\">0&#176;</text>\n";
-  out += "<text x=\"" + number(centre - 10) + "\" y=\"" + number(centre - radius - 14) +
+  out += "<text x=\"" + number_text(centre - 10) + "\" y=\"" + number_text(centre - radius - 14) +
          "\" font-size=\"12\">90&#176;</text>\n";
   for (const auto& e : w.evaluations) {
     double x = 0.0, y = 0.0;
     at(e, x, y);
     const std::string fill = e.ratio ? ramp(hi > lo ? (*e.ratio - lo) / (hi - lo) : 1.0) : std::string("white");
-    out += "<circle cx=\"" + number(x) + "\" cy=\"" + number(y) + "\" r=\"5\" fill=\"" + fill + "\" stroke=\"#333\">" +
-           "<title>tilt " + number(degrees(e.tilt)) + " deg, azimuth " + number(degrees(e.azimuth)) + " deg" +
-           (e.ratio ? ": R/R0 = " + number(*e.ratio, "%.6g") : std::string(": ") + analysis::to_string(e.verdict)) +
+    out += "<circle cx=\"" + number_text(x) + "\" cy=\"" + number_text(y) + "\" r=\"5\" fill=\"" + fill + "\" stroke=\"#333\">" +
+           "<title>tilt " + number_text(degrees(e.tilt)) + " deg, azimuth " + number_text(degrees(e.azimuth)) + " deg" +
+           (e.ratio ? ": R/R0 = " + number_text(*e.ratio, "%.6g") : std::string(": ") + analysis::to_string(e.verdict)) +
            "</title></circle>\n";
     if (e.ratio) {
-      out += "<text x=\"" + number(x + 8) + "\" y=\"" + number(y - 6) + "\" font-size=\"10\" fill=\"#555\">" +
-             number(*e.ratio, "%.3g") + "</text>\n";
+      out += "<text x=\"" + number_text(x + 8) + "\" y=\"" + number_text(y - 6) + "\" font-size=\"10\" fill=\"#555\">" +
+             number_text(*e.ratio, "%.3g") + "</text>\n";
     }
   }
-  std::string first = std::to_string(w.evaluations.size()) + " directions within " + number(degrees(w.cone_angle)) +
+  std::string first = std::to_string(w.evaluations.size()) + " directions within " + number_text(degrees(w.cone_angle)) +
                       "&#176; of gravity, seen from above (distance: tilt, angle: azimuth)";
   std::string second = "no direction collapsed";
   if (w.worst) {
     const analysis::SettlementEvaluation& e = w.evaluations[static_cast<std::size_t>(*w.worst)];
     double x = 0.0, y = 0.0;
     at(e, x, y);
-    out += "<circle cx=\"" + number(x) + "\" cy=\"" + number(y) + "\" r=\"10\" fill=\"none\" stroke=\"#c0392b\" "
+    out += "<circle cx=\"" + number_text(x) + "\" cy=\"" + number_text(y) + "\" r=\"10\" fill=\"none\" stroke=\"#c0392b\" "
            "stroke-width=\"2\"/>\n";
-    second = "most harmful: R/R0 = " + number(*e.ratio, "%.6g") + ", tilt " + number(degrees(e.tilt)) +
-             "&#176;, azimuth " + number(degrees(e.azimuth)) + "&#176;" +
-             (w.upper_bound ? ", certified &#8804; " + number(*w.upper_bound, "%.6g") : ", not certified");
+    second = "most harmful: R/R0 = " + number_text(*e.ratio, "%.6g") + ", tilt " + number_text(degrees(e.tilt)) +
+             "&#176;, azimuth " + number_text(degrees(e.azimuth)) + "&#176;" +
+             (w.upper_bound ? ", certified &#8804; " + number_text(*w.upper_bound, "%.6g") : ", not certified");
   }
-  out += "<text x=\"10\" y=\"" + number(size + 18) + "\" font-size=\"13\">" + first + "</text>\n";
-  out += "<text x=\"10\" y=\"" + number(size + 38) + "\" font-size=\"13\">" + second + "</text>\n</svg>\n";
+  out += "<text x=\"10\" y=\"" + number_text(size + 18) + "\" font-size=\"13\">" + first + "</text>\n";
+  out += "<text x=\"10\" y=\"" + number_text(size + 38) + "\" font-size=\"13\">" + second + "</text>\n</svg>\n";
   return out;
 }
 
