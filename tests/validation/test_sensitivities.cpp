@@ -72,7 +72,7 @@ TEST(Sensitivities, UnitWeightDerivativesArePerTheModelsUnitWeightUnit) {
 
 /// The value the sensitivities differentiate: alpha, or the base reaction under settlement (model
 /// force units, kN in these samples).
-double value_of(const AnalysisResult& r) {
+double collapse_value_of(const AnalysisResult& r) {
   EXPECT_EQ(r.verdict, Verdict::Collapse);
   if (r.type == model::AnalysisType::Settlement) return r.base_reaction.value_or(std::nan(""));
   return r.load_multiplier.value_or(std::nan(""));
@@ -101,7 +101,7 @@ class WallDifferences : public ::testing::TestWithParam<Scene> {
     result_ = rbla::analysis::analyse(loaded_.model);
     ASSERT_EQ(result_.verdict, Verdict::Collapse);
     ASSERT_TRUE(result_.sensitivities);
-    value_ = value_of(result_);
+    value_ = collapse_value_of(result_);
   }
   /// Central difference of the value for a change `apply(model, +-h)`.
   template <class Apply>
@@ -113,7 +113,7 @@ class WallDifferences : public ::testing::TestWithParam<Scene> {
     }
     apply(up, h);
     apply(down, -h);
-    return (value_of(rbla::analysis::analyse(up)) - value_of(rbla::analysis::analyse(down))) / (2.0 * h);
+    return (collapse_value_of(rbla::analysis::analyse(up)) - collapse_value_of(rbla::analysis::analyse(down))) / (2.0 * h);
   }
   /// Derivatives below this are zero for the comparison (relative to the value: alpha ~ 0.5, R ~ 12 kN).
   double floor() const { return 1e-2 * std::max(1.0, std::abs(value_)); }
