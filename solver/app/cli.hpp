@@ -23,6 +23,7 @@
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,13 @@ enum ExitCode : int {
 };
 
 using Clock = std::chrono::steady_clock;
+
+/// An option's value that parses but that the command cannot use (a malformed --grid, --task
+/// beyond --tasks): main reports it as a usage error, exit 1, like CLI11's own range checks.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// A whole message as printed: user text inside is escaped (io/printable.hpp) and very long
 /// messages are cut.

@@ -3,13 +3,29 @@
 #include "commands.hpp"
 
 #include "io/atomic_file.hpp"
+#include "rbla/conic/problem.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <new>
 #include <vector>
+
+namespace {
+/// Ends the run without the libraries' exit handlers: OpenBLAS's joins its server thread, which
+/// under an address-space limit may be retrying the malloc of its work buffer forever (the run
+/// then hung at exit after printing this message).
+[[noreturn]] void end_out_of_memory(const std::string& reason) {
+  std::cerr << "rbla: out of memory" << (reason.empty() ? "" : ": " + rbla::cli::shown(reason)) << "\n";
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  std::_Exit(rbla::cli::kSolverFailure);
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace rbla::cli;
@@ -52,13 +68,17 @@ int main(int argc, char** argv) {
     for (const Command& command : commands) {
       if (*command.app) return command.run();
     }
+  } catch (const UsageError& error) {
+    std::cerr << "rbla: " << shown(error.what()) << "\n";
+    return kUsage;
   } catch (const rbla::model::ModelError& error) {
     return report_invalid(error);
   } catch (const rbla::io::FileError& error) {
     return report_file_error(error);
+  } catch (const rbla::conic::ConicResourceError& error) {
+    end_out_of_memory(error.what());
   } catch (const std::bad_alloc&) {
-    std::cerr << "rbla: out of memory\n";
-    return kSolverFailure;
+    end_out_of_memory("");
   } catch (const std::exception& error) {
     // Anything else ends the run with its reason, never with an abort.
     std::cerr << "rbla: " << shown(error.what()) << "\n";

@@ -7,6 +7,7 @@
 #include "io/svg_writer.hpp"
 
 #include <iostream>
+#include <optional>
 
 namespace rbla::cli {
 namespace {
@@ -21,11 +22,18 @@ int run_solve(const CommonOptions& options) {
 
   analysis::AnalysisOptions analysis_options;
   analysis_options.log = options.verbose ? &std::cerr : nullptr;
+  // Kept and written after the solve, failed or not: an interrupted run leaves the file as it
+  // was, like every other output.
+  std::optional<conic::ConicProblem> to_dump;
   if (!options.dump_problem_path.empty()) {
     analysis_options.problem_ready = [&](const conic::ConicProblem& problem) {
-      io::write_problem_file(options.dump_problem_path, problem);
+      io::check_problem_file(options.dump_problem_path, problem);
+      to_dump = problem;
     };
   }
+  const auto write_dump = [&] {
+    if (to_dump) io::write_problem_file(options.dump_problem_path, *to_dump);
+  };
   analysis_options.threads = options.threads;
   progress(options, std::string("analysis: ") + model::to_string(m.analysis.type) + ", " +
                         model::to_string(m.analysis.friction_model) + " friction, cone " +
@@ -35,10 +43,15 @@ int run_solve(const CommonOptions& options) {
     result = analysis::analyse(m, analysis_options);
   } catch (const model::ModelError& error) {
     return report_invalid(error);
+  } catch (const conic::ConicResourceError&) {
+    write_dump();
+    throw;  // main ends the run: out of memory
   } catch (const conic::ConicSetupError& error) {
     std::cerr << "rbla: conic problem: " << error.what() << "\n";
+    write_dump();
     return kSolverFailure;
   }
+  write_dump();
   report_warnings(result.warnings, options);
   if (result.solver_ran) {
     const bool stopped = result.verdict == analysis::Verdict::TimeLimit ||

@@ -41,21 +41,28 @@ struct SweepOptions {
 /// Points in all, at most: a sweep is files on disk, one per point.
 constexpr std::size_t kMaxSweepPoints = 100000;
 
+/// The parameter axes as the options give them; what does not parse is a usage error (exit 1).
+/// Whether they suit the model is checked later, against the model (exit 2).
 std::vector<analysis::SweepAxis> sweep_axes(const SweepOptions& sweep) {
   if (sweep.grid.empty() == sweep.random.empty()) {
-    throw model::ModelError("--grid/--random", "give the parameters either all with --grid or all with --random");
+    throw UsageError("--grid/--random: give the parameters either all with --grid or all with --random");
   }
-  if (!sweep.random.empty() && sweep.samples < 1) throw model::ModelError("--samples", "--random needs --samples N");
+  if (!sweep.random.empty() && sweep.samples < 1) throw UsageError("--samples: --random needs --samples N");
   std::vector<analysis::SweepAxis> axes;
-  for (const auto& text : sweep.grid) axes.push_back(io::parse_sweep_axis(text, true, "--grid"));
-  for (const auto& text : sweep.random) axes.push_back(io::parse_sweep_axis(text, false, "--random"));
+  try {
+    for (const auto& text : sweep.grid) axes.push_back(io::parse_sweep_axis(text, true, "--grid"));
+    for (const auto& text : sweep.random) axes.push_back(io::parse_sweep_axis(text, false, "--random"));
+  } catch (const model::ModelError& error) {
+    throw UsageError(error.what());
+  }
   double total = 1.0;
   for (const auto& axis : axes) total *= axis.count;
   if (!sweep.random.empty()) total = sweep.samples;
   if (total > static_cast<double>(kMaxSweepPoints)) {
-    throw model::ModelError("--grid/--samples", "the sweep has " + std::to_string(static_cast<long long>(total)) +
-                                                          " points; at most " + std::to_string(kMaxSweepPoints));
+    throw UsageError("--grid/--samples: the sweep has " + std::to_string(static_cast<long long>(total)) +
+                     " points; at most " + std::to_string(kMaxSweepPoints));
   }
+  if (sweep.task >= sweep.tasks) throw UsageError("--task: must be below --tasks");
   return axes;
 }
 
@@ -217,7 +224,6 @@ void check_model_rereadable(const CommonOptions& options, const SweepOptions& sw
 
 int run_sweep(const CommonOptions& options, SweepOptions sweep) {
   const auto axes = sweep_axes(sweep);
-  if (sweep.task >= sweep.tasks) throw model::ModelError("--task", "must be below --tasks");
   check_model_rereadable(options, sweep);
   const auto points = sweep.random.empty() ? analysis::grid_points(axes)
                                            : analysis::random_points(axes, sweep.samples, sweep.seed);

@@ -42,6 +42,8 @@ struct RunOptions {
   std::uint64_t address_space = 0;    ///< RLIMIT_AS in bytes for the whole command line (0: none)
   std::uint64_t file_size = 0;        ///< RLIMIT_FSIZE in bytes (0: none); SIGXFSZ is ignored, so a
                                       ///< write beyond it fails with EFBIG instead of killing
+  std::uint64_t cpu_seconds = 0;      ///< RLIMIT_CPU (0: none): a run that spins is killed
+                                      ///< (SIGXCPU) and fails its test instead of hanging it
 };
 
 /// True when the program was built with AddressSanitizer, which reserves terabytes of address
@@ -80,6 +82,10 @@ inline RunResult run_rbla_with(const RunOptions& options) {
     if (options.address_space) {
       const rlimit limit{options.address_space, options.address_space};
       ::setrlimit(RLIMIT_AS, &limit);
+    }
+    if (options.cpu_seconds) {
+      const rlimit limit{options.cpu_seconds, options.cpu_seconds};
+      ::setrlimit(RLIMIT_CPU, &limit);
     }
     if (options.file_size) {
       std::signal(SIGXFSZ, SIG_IGN);  // kept across exec

@@ -105,6 +105,21 @@ TEST(Sweep, ParametersThatDoNotApplyAreRefusedBeforeAnythingRuns) {
   EXPECT_EQ(axis.count, 7);
 }
 
+// Options that do not parse are usage errors (exit 1, as README says for option values); they
+// were exit 2, the code for an invalid model.
+TEST(Sweep, MalformedSweepOptionsAreUsageErrors) {
+  const std::string model = std::string(RBLA_SOURCE_DIR) + "/samples/wall_opening.json";
+  const fs::path dir = fs::temp_directory_path() / ("rbla_sweep_usage_" + std::to_string(::getpid()));
+  for (const char* options : {"--grid friction=0.1:x:3", "--grid mu=0.1:0.5:3", "--grid friction=0.1:0.5",
+                                     "--random friction=0.1:0.5", "--grid friction=0.1:0.5:2 --tasks 2 --task 2",
+                                     "--grid friction=0.1:0.5:1000 --grid friction_factor=0.5:1:1000"}) {
+    const auto r = rbla::testing::run_rbla("sweep -q " + model + " --out " + dir.string() + " " + std::string(options));
+    EXPECT_EQ(r.exit_code, 1) << options << "\n" << r.output;
+    EXPECT_NE(r.output.find("rbla: --"), std::string::npos) << "names the option: " << r.output;
+    EXPECT_FALSE(fs::exists(dir)) << "nothing made";
+  }
+}
+
 std::string read(const fs::path& path) {
   std::ifstream in(path);
   std::stringstream text;

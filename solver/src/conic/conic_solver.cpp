@@ -16,6 +16,7 @@
 
 #include "iteration_log.hpp"
 #include "kkt_system.hpp"
+#include "sparse_cholesky.hpp"
 #include "rbla/conic/solver.hpp"
 #include "residuals.hpp"
 #include "scaled_problem.hpp"
@@ -120,6 +121,20 @@ void ConicSolver::Impl::check_memory() const {
                   "memory",
                   static_cast<long long>(problem.A.rows()), normal.factor_nonzeros(),
                   need / 1e9, limit / 1e9);
+    throw ConicResourceError(text);
+  }
+  // What MemAvailable does not see: an address-space limit (ulimit -v), under which OpenBLAS
+  // would wait forever for its buffers (detail::blas_buffer_bytes_to_reserve). The probe adds
+  // 16 MiB for CHOLMOD's workspace and the solve's vectors.
+  const int blas_callers = fork_join ? 2 : 1;
+  const double probe = need + detail::blas_buffer_bytes_to_reserve(blas_callers) + 16.0 * (1 << 20);
+  if (!detail::can_allocate(probe)) {
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "the Cholesky factor of the normal matrix and the BLAS work space need "
+                  "%.2f GB more, which this process may not allocate (its address-space "
+                  "limit, ulimit -v, or the system's memory)",
+                  probe / 1e9);
     throw ConicResourceError(text);
   }
 }

@@ -3,7 +3,10 @@
 #include <cholmod.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "rbla/conic/problem.hpp"
@@ -52,6 +55,42 @@ class SerialOpenMp {
 }  // namespace
 
 int current_blas_threads() { return openblas_get_num_threads ? openblas_get_num_threads() : 0; }
+
+namespace {
+[[noreturn]] void throw_analysis_failure(int status, int rows) {
+  if (status == CHOLMOD_OUT_OF_MEMORY) {
+    throw ConicResourceError("CHOLMOD ran out of memory in the symbolic analysis (" +
+                             std::to_string(rows) + " rows)");
+  }
+  throw ConicSetupError("CHOLMOD symbolic analysis failed (status " + std::to_string(status) + ")");
+}
+
+// OpenBLAS's BUFFER_SIZE on x86-64 (32 << 22 bytes in its Makefile.system, 0.3.21 in Debian 12)
+// and the page it adds for alignment: the malloc(134221824) that gdb shows it retrying.
+constexpr double kOpenBlasBufferBytes = 134221824.0;
+std::atomic<int> blas_callers_served{0};
+}  // namespace
+
+double blas_buffer_bytes_to_reserve(int callers) {
+  if (!openblas_get_num_threads) return 0.0;
+  return std::max(0, callers - blas_callers_served.load()) * kOpenBlasBufferBytes;
+}
+
+void note_blas_callers(int callers) {
+  int served = blas_callers_served.load();
+  while (served < callers && !blas_callers_served.compare_exchange_weak(served, callers)) {
+  }
+}
+
+bool can_allocate(double bytes) {
+  if (!(bytes > 0)) return true;
+  if (bytes >= static_cast<double>(std::numeric_limits<std::size_t>::max())) return false;
+  // volatile: a malloc whose result is only freed may be elided by the compiler.
+  void* volatile probe = std::malloc(static_cast<std::size_t>(bytes));
+  if (!probe) return false;
+  std::free(probe);
+  return true;
+}
 
 BlasThreads::BlasThreads(int threads) {
   if (threads <= 0 || !openblas_set_num_threads || !openblas_get_num_threads) return;
@@ -134,8 +173,7 @@ cholmod_factor* SparseCholesky::Impl::analyze_keeping_trailing(int n, int traili
     cholmod_factor* leading = cholmod_analyze(&a, &c);
     if (!leading || c.status < CHOLMOD_OK) {
       if (leading) cholmod_free_factor(&leading, &c);
-      throw ConicSetupError("CHOLMOD symbolic analysis failed (status " +
-                            std::to_string(c.status) + ")");
+      throw_analysis_failure(c.status, lead);
     }
     const int* leading_perm = static_cast<const int*>(leading->Perm);
     std::copy(leading_perm, leading_perm + lead, perm.begin());
@@ -207,8 +245,8 @@ void SparseCholesky::analyze(int n, const int* col_ptr, const int* row_ind, int 
   impl_->factor = trailing == 0 ? cholmod_analyze(&impl_->matrix, &c)
                                 : impl_->analyze_keeping_trailing(n, trailing);
   if (!impl_->factor || c.status < CHOLMOD_OK) {
-    throw ConicSetupError("CHOLMOD symbolic analysis failed (status " + std::to_string(c.status) +
-                          ")");
+    if (impl_->factor) cholmod_free_factor(&impl_->factor, &c);
+    throw_analysis_failure(c.status, n);
   }
 }
 
@@ -229,9 +267,14 @@ bool SparseCholesky::factorize(const double* values, double shift) {
   const int ok = cholmod_factorize_p(&a, beta, nullptr, 0, impl_->factor, &c);
   a.xtype = CHOLMOD_PATTERN;
   a.x = nullptr;
+  if (c.status == CHOLMOD_OUT_OF_MEMORY) {
+    throw ConicResourceError("CHOLMOD ran out of memory in the numeric factorisation (" +
+                             std::to_string(impl_->n) + " rows)");
+  }
   if (!ok || c.status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
     return false;
   }
+  if (impl_->factor->is_super) note_blas_callers(1);  // a simplicial factor calls no LAPACK
   return c.status >= CHOLMOD_OK;
 }
 

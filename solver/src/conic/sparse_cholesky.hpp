@@ -32,6 +32,17 @@ class BlasThreads {
 /// OpenBLAS's current thread count; 0 when the BLAS is not OpenBLAS.
 int current_blas_threads();
 
+/// Address space that `callers` threads factoring at once still need for OpenBLAS's work
+/// buffers, in bytes: 0 for another BLAS, or for buffers already in OpenBLAS's pool. OpenBLAS
+/// takes one buffer per concurrent caller of its LAPACK (dpotrf, dlauum) at the first call
+/// and keeps it; when malloc refuses one (an address-space limit, `ulimit -v`), it retries
+/// forever instead of failing, so a solver must make sure of this memory before it factors.
+double blas_buffer_bytes_to_reserve(int callers);
+/// Records that `callers` threads have factored at once, so their buffers are in the pool.
+void note_blas_callers(int callers);
+/// Whether `bytes` can be allocated now (allocated and freed at once, never touched).
+bool can_allocate(double bytes);
+
 class SparseCholesky {
  public:
   explicit SparseCholesky(Ordering ordering);
@@ -46,7 +57,8 @@ class SparseCholesky {
   /// block (used by SplitCholesky).
   void analyze(int n, const int* col_ptr, const int* row_ind, int trailing = 0);
   /// Factors (M + shift·I) with M's lower-triangle values in the pattern's order. False if
-  /// CHOLMOD reports that the matrix is not positive definite (the caller then retries).
+  /// CHOLMOD reports that the matrix is not positive definite (the caller then retries);
+  /// ConicResourceError if it ran out of memory.
   bool factorize(const double* values, double shift);
   /// x ← (M + shift·I)⁻¹ x with the last successful factor, for each of `columns` columns (n
   /// values each, column-major): one pass over the factor serves all of them, and the solves

@@ -242,6 +242,7 @@ bool SplitCholesky::factorize(const double* values, const double* share0, const 
   const std::function<void()> second = [&] { factor_domain(1); };
   fork_join_.run(first, second);
   if (!ok[0] || !ok[1]) return false;
+  if (s > 0) note_blas_callers(2);  // both threads ran dlauum at once
   if (s == 0) return true;
   // Lower triangle of T₀T₀ᵀ + T₁T₁ᵀ − 2D, read back from the flipped upper triangles.
   const Eigen::Index last = s - 1;

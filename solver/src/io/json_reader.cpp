@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <istream>
 #include <limits>
+#include <streambuf>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,7 @@ class GuardedBuilder {
   bool key(json::string_t& name) {
     Frame& top = frames_.back();
     top.has_key = false;  // the problem is the object's, not its previous member's
+    top.awaiting_key = false;
     check_length(name, "a property name");
     if (top.value->contains(name)) {
       top.key = name, top.has_key = true;
@@ -77,6 +80,16 @@ class GuardedBuilder {
 
   json take() { return std::move(root_); }
 
+  /// Refuses the string being read, of more than `bytes` bytes, before it is whole: a name is
+  /// the object's problem, a value its member's or element's.
+  [[noreturn]] void refuse_long_string(std::uint64_t bytes) {
+    const bool name = !frames_.empty() && frames_.back().value->is_object() && frames_.back().awaiting_key;
+    if (name) frames_.back().has_key = false;
+    throw ModelError(pointer(), std::string(name ? "a property name" : "a string") + " of more than " +
+                                    std::to_string(bytes) + " bytes is longer than " +
+                                    limit_text(&InputLimits::max_string_bytes, limits_.max_string_bytes));
+  }
+
  private:
   enum class Role { Other, Root, Blocks, Block, Vertices, Interfaces };
   struct Frame {
@@ -84,6 +97,7 @@ class GuardedBuilder {
     Role role = Role::Other;
     std::size_t index = 0;  // array: index of the element being read
     bool has_key = false;   // object: `key` names the member being read
+    bool awaiting_key = true;  // object: the next string is a name (no member is open)
     std::string key;
   };
 
@@ -130,8 +144,16 @@ class GuardedBuilder {
   template <typename Value>
   bool place(Value&& value) {
     put(std::forward<Value>(value));
-    if (!frames_.empty() && frames_.back().value->is_array()) ++frames_.back().index;
+    value_done();
     return true;
+  }
+
+  /// A value is whole: the next element of an array, or a name next in an object.
+  void value_done() {
+    if (frames_.empty()) return;
+    Frame& top = frames_.back();
+    if (top.value->is_array()) ++top.index;
+    else top.awaiting_key = true;
   }
 
   bool open(json::value_t type) {
@@ -140,13 +162,13 @@ class GuardedBuilder {
     }
     const Role role = role_of(type == json::value_t::array);
     json* value = put(type);
-    frames_.push_back({value, role, 0, false, {}});
+    frames_.push_back({value, role, 0, false, true, {}});
     return true;
   }
 
   bool close() {
     frames_.pop_back();
-    if (!frames_.empty() && frames_.back().value->is_array()) ++frames_.back().index;
+    value_done();
     return true;
   }
 
@@ -204,9 +226,82 @@ json parse_guarded(Input&& input, const InputLimits& limits) {
   return builder.take();
 }
 
+/// Thrown by StringRunGuard when the parser asks for the byte past the limit.
+struct StringRunTooLong {};
+
+/// Passes a stream through, and stops it inside a string that is certainly too long: the lexer
+/// gathers each string whole before GuardedBuilder sees it, so a 200 MB string took 400 MB and
+/// seconds to refuse. Counts the raw bytes between quotes; an escape (\uXXXX) is at most six raw
+/// bytes for at least one byte of the string, so a run of more than max_raw = 6 x the limit is
+/// too long whatever it holds, and shorter ones are left to GuardedBuilder's exact test. The
+/// bytes before the one past the limit are still passed on: malformed JSON before it is reported
+/// as such.
+class StringRunGuard : public std::streambuf {
+ public:
+  StringRunGuard(std::streambuf& source, std::uint64_t max_raw) : source_(source), max_raw_(max_raw), data_(1 << 16) {}
+
+ protected:
+  int_type underflow() override {
+    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    if (too_long_) throw StringRunTooLong{};
+    const std::streamsize n = source_.sgetn(data_.data(), static_cast<std::streamsize>(data_.size()));
+    if (n <= 0) return traits_type::eof();
+    const std::size_t end = scan(static_cast<std::size_t>(n));
+    if (end == 0) throw StringRunTooLong{};
+    setg(data_.data(), data_.data(), data_.data() + end);
+    return traits_type::to_int_type(*gptr());
+  }
+
+ private:
+  /// Follows the quotes of the first n bytes; returns how many may be passed on (n, or fewer
+  /// when a string's run passes max_raw, which sets too_long_).
+  std::size_t scan(std::size_t n) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const char c = data_[k];
+      if (!in_string_) {
+        in_string_ = c == '"';
+        run_ = 0;
+      } else if (escaped_) {
+        escaped_ = false;
+        ++run_;
+      } else if (c == '\\') {
+        escaped_ = true;
+        ++run_;
+      } else if (c == '"') {
+        in_string_ = false;
+      } else {
+        ++run_;
+      }
+      if (run_ > max_raw_) {
+        too_long_ = true;
+        return k;
+      }
+    }
+    return n;
+  }
+
+  std::streambuf& source_;
+  std::uint64_t max_raw_;
+  std::vector<char> data_;
+  std::uint64_t run_ = 0;
+  bool in_string_ = false, escaped_ = false, too_long_ = false;
+};
+
 }  // namespace
 
-json read_json(std::istream& in, const InputLimits& limits) { return parse_guarded(in, limits); }
+json read_json(std::istream& in, const InputLimits& limits) {
+  constexpr std::uint64_t kMost = std::numeric_limits<std::uint64_t>::max();
+  const std::uint64_t max_raw = limits.max_string_bytes > (kMost - 6) / 6 ? kMost : 6 * limits.max_string_bytes + 6;
+  StringRunGuard guard(*in.rdbuf(), max_raw);
+  std::istream guarded(&guard);
+  GuardedBuilder builder(limits);
+  try {
+    json::sax_parse(guarded, &builder);
+  } catch (const StringRunTooLong&) {
+    builder.refuse_long_string(limits.max_string_bytes);
+  }
+  return builder.take();
+}
 
 json read_json(std::string_view text, const InputLimits& limits) {
   if (text.size() > limits.max_bytes) {
