@@ -16,8 +16,12 @@ one-line name of the layout it found. Layouts understood:
 
 Meshes are COMPAS halfedge data (``vertex``: key -> {x, y, z}, ``face``: key -> vertex keys) or
 polyhedron data (``vertices``: [[x, y, z]], ``faces``: [[indices]]). Anything else is refused
-with a ``ConversionError`` saying what was found and what is expected.
+with a ``ConversionError`` saying what was found and what is expected; a file of the right layout
+with a value of the wrong kind inside (a number where an object belongs, a list that is not one)
+is refused with the JSON pointer of that value, never with a Python exception.
 """
+
+import json
 
 EXPECTED = ("a COMPAS 2 assembly (compas_assembly Assembly or compas_cra CRA_Assembly written by "
             "compas.json_dump: {\"dtype\", \"data\"}), a COMPAS 1 assembly ({\"dtype\", \"value\"}, "
@@ -27,18 +31,91 @@ EXPECTED = ("a COMPAS 2 assembly (compas_assembly Assembly or compas_cra CRA_Ass
 
 
 class ConversionError(Exception):
-    """The input is not an assembly this converter understands."""
+    """The input is not an assembly this converter understands. With a pointer, the message
+    starts with the JSON pointer of the value at fault, as the solver's messages do."""
+
+    def __init__(self, message, pointer=None):
+        if pointer is not None:
+            message = "%s: %s" % (shown_pointer(pointer), message)
+        Exception.__init__(self, message)
+        self.pointer = pointer
+
+
+# Longest pointer quoted in a message: keys come from the file, and one line must stay one line.
+_MAX_SHOWN = 300
+
+
+def child(pointer, key):
+    """The JSON pointer (RFC 6901) of member or item key of the value at pointer."""
+    return "%s/%s" % (pointer, str(key).replace("~", "~0").replace("/", "~1"))
+
+
+def shown_pointer(pointer):
+    """A pointer fit for a one-line message: control characters as \\uXXXX (no forged lines),
+    cut to a few hundred characters, the root as (document)."""
+    if not pointer:
+        return "(document)"
+    text = "".join(c if c >= " " and c != "\x7f" else "\\u%04x" % ord(c) for c in pointer)
+    if len(text) > _MAX_SHOWN:
+        text = "%s... (%d characters)" % (text[:_MAX_SHOWN], len(pointer))
+    return text
+
+
+def shown_text(text, limit=40):
+    """Text from the file quoted for a one-line message (JSON escapes: no control characters)."""
+    return json.dumps(text if len(text) <= limit else text[:limit] + "...")
+
+
+def kind_of(x):
+    """What a JSON value is, in words, for messages."""
+    if x is None:
+        return "null"
+    if isinstance(x, bool):
+        return "a boolean"
+    if isinstance(x, (int, float)):
+        return "a number"
+    if isinstance(x, str):
+        return "a string"
+    if isinstance(x, list):
+        return "a list"
+    return "an object"
+
+
+def expect(x, types, what, pointer):
+    """x itself when it is one of types (bool is never a number here); else a ConversionError
+    naming the pointer, what was expected and what was found."""
+    if isinstance(x, types) and not (isinstance(x, bool) and bool not in _as_tuple(types)):
+        return x
+    raise ConversionError("expected %s, found %s" % (what, kind_of(x)), pointer)
+
+
+def _as_tuple(types):
+    return types if isinstance(types, tuple) else (types,)
+
+
+def optional_object(x, pointer):
+    """An object that may be absent (null): {} then."""
+    return {} if x is None else expect(x, dict, "an object", pointer)
+
+
+def unwrap_at(x, pointer=""):
+    """(x without its COMPAS {"dtype", "data" (COMPAS 2) or "value" (COMPAS 1)} wrappers, the
+    pointer of what is left)."""
+    while isinstance(x, dict) and "dtype" in x and ("data" in x or "value" in x):
+        key = "data" if "data" in x else "value"
+        x, pointer = x[key], child(pointer, key)
+    return x, pointer
 
 
 def unwrap(x):
     """Strip COMPAS {"dtype", "data" (COMPAS 2) or "value" (COMPAS 1)} wrappers."""
-    while isinstance(x, dict) and "dtype" in x and ("data" in x or "value" in x):
-        x = x["data"] if "data" in x else x["value"]
-    return x
+    return unwrap_at(x)[0]
 
 
 def dtype_of(x):
-    return x.get("dtype", "") if isinstance(x, dict) else ""
+    """The dtype of a wrapper, or "" (also when the file gives something other than a string)."""
+    d = x.get("dtype", "") if isinstance(x, dict) else ""
+    return d if isinstance(d, str) else ""
 
 
 def generation(x):
@@ -66,8 +143,9 @@ def describe(doc):
 
 
 class Assembly(object):
-    """The blocks of a COMPAS file: nodes [(key, mesh data, attributes)], default is_support,
-    edges [(u, v, [polygon points])], dtype and the name of the layout found."""
+    """The blocks of a COMPAS file: nodes [(key, mesh data, attributes, wrapper, pointer of the
+    mesh data)], default is_support, edges [(u, v, [(pointer, polygon points)])], dtype and the
+    name of the layout found."""
 
     def __init__(self, layout, dtype):
         self.layout = layout
@@ -77,60 +155,87 @@ class Assembly(object):
         self.edges = []
 
 
-def _graph_of(data):
-    """The graph data (with "node" or "vertex" entries) inside an assembly's data, or None."""
+def _graph_of(data, pointer):
+    """(graph data with "node" or "vertex" entries inside an assembly's data, its pointer), or
+    (None, None)."""
     if not isinstance(data, dict):
-        return None
+        return None, None
     if "graph" in data:
-        g = unwrap(data["graph"])
-        return g if isinstance(g, dict) else None
+        g, at = unwrap_at(data["graph"], child(pointer, "graph"))
+        return (g, at) if isinstance(g, dict) else (None, None)
     if "node" in data or "vertex" in data:
-        return data
-    return None
+        return data, pointer
+    return None, None
 
 
-def _interfaces_of(attr):
-    """Polygons stored on an edge: COMPAS 2 Interface objects, or COMPAS 1 interface_points."""
-    attr = attr or {}
+def _support_flag(value, default, pointer):
+    """is_support: a JSON boolean (null or absent: the default). Anything else is refused rather
+    than read by Python's truth (the string "false" would make a support)."""
+    if value is None:
+        return default
+    return expect(value, bool, "true or false", pointer)
+
+
+def _interfaces_of(attr, pointer):
+    """Polygons stored on an edge, as (pointer, points): COMPAS 2 Interface objects, or COMPAS 1
+    interface_points."""
+    attr = optional_object(attr, pointer)
     polygons = []
-    for itf in attr.get("interfaces") or []:
-        polygons.append(unwrap(itf).get("points") or [])
+    at = child(pointer, "interfaces")
+    for k, itf in enumerate(expect(attr.get("interfaces") or [], list, "a list of interfaces", at)):
+        data, data_at = unwrap_at(itf, child(at, k))
+        points = expect(data, dict, "an interface object", data_at).get("points") or []
+        polygons.append((child(data_at, "points"), points))
     if attr.get("interface_points"):
-        polygons.append(attr["interface_points"])
+        polygons.append((child(pointer, "interface_points"), attr["interface_points"]))
     return polygons
 
 
-def _from_graph(asm, g, blocks=None):
-    nodes = g.get("node")
-    if nodes is None:
-        nodes = g.get("vertex")
-    if not isinstance(nodes, dict) or not nodes:
-        raise ConversionError("the assembly's graph has no nodes")
-    defaults = g.get("default_node_attributes") or g.get("dna") or g.get("dva") or {}
-    asm.default_support = bool(defaults.get("is_support", False))
+def _from_graph(asm, g, pointer, blocks=None, blocks_at=None):
+    name = "node" if g.get("node") is not None else "vertex"
+    nodes, nodes_at = g.get(name), child(pointer, name)
+    if not nodes:
+        raise ConversionError("the assembly's graph has no nodes", nodes_at)
+    expect(nodes, dict, "the graph's nodes (an object)", nodes_at)
+    for name in ("default_node_attributes", "dna", "dva"):
+        if g.get(name):
+            defaults_at = child(pointer, name)
+            defaults = expect(g[name], dict, "an object", defaults_at)
+            break
+    else:
+        defaults, defaults_at = {}, pointer
+    asm.default_support = _support_flag(defaults.get("is_support"), False, child(defaults_at, "is_support"))
     for key, attr in nodes.items():
-        attr = attr or {}
-        mesh = attr.get("block")
+        node_at = child(nodes_at, key)
+        attr = optional_object(attr, node_at)
+        mesh, mesh_at = attr.get("block"), child(node_at, "block")
         if mesh is None and blocks is not None:
-            mesh = blocks.get(str(key))
+            mesh, mesh_at = blocks.get(str(key)), child(blocks_at, key)
         if mesh is None:
-            raise ConversionError("node %s has no block mesh" % key)
+            raise ConversionError("the node has no block mesh", node_at)
         if not is_mesh(mesh):
-            raise ConversionError("node %s: the block is not a COMPAS mesh (dtype %r)" % (key, dtype_of(mesh)))
-        asm.nodes.append((str(key), unwrap(mesh), attr, mesh))
-    for u, nbrs in (g.get("edge") or {}).items():
-        for v, attr in (nbrs or {}).items():
-            asm.edges.append((str(u), str(v), _interfaces_of(attr)))
+            raise ConversionError("the block is not a COMPAS mesh (%s)" % describe(mesh), mesh_at)
+        # resolved here, once: the node's own flag, else the graph's default
+        attr = dict(attr, is_support=_support_flag(attr.get("is_support"), asm.default_support,
+                                                   child(node_at, "is_support")))
+        data, data_at = unwrap_at(mesh, mesh_at)
+        asm.nodes.append((str(key), data, attr, mesh, data_at))
+    edges_at = child(pointer, "edge")
+    for u, nbrs in optional_object(g.get("edge"), edges_at).items():
+        for v, attr in optional_object(nbrs, child(edges_at, u)).items():
+            asm.edges.append((str(u), str(v), _interfaces_of(attr, child(child(edges_at, u), v))))
     return asm
 
 
 def _from_meshes(items, layout):
+    """items: (key, mesh, pointer of the mesh)."""
     asm = Assembly(layout, "")
-    for key, mesh in items:
+    for key, mesh, pointer in items:
         if not is_mesh(mesh):
             raise ConversionError("%s: item %s is not a COMPAS mesh (%s); expected %s"
                                   % (layout, key, describe(mesh), EXPECTED))
-        asm.nodes.append((str(key), unwrap(mesh), {}, mesh))
+        data, data_at = unwrap_at(mesh, pointer)
+        asm.nodes.append((str(key), data, {}, mesh, data_at))
     return asm
 
 
@@ -140,24 +245,27 @@ def read_assembly(doc):
         if not doc or not any(is_mesh(x) for x in doc):
             raise ConversionError("found %s; expected %s" % ("an empty list" if not doc else describe(doc), EXPECTED))
         gen = generation(doc[0]) or "plain"
-        return _from_meshes(list(enumerate(doc)), "%s list of %d meshes" % (gen, len(doc)))
+        return _from_meshes([(k, m, child("", k)) for k, m in enumerate(doc)],
+                           "%s list of %d meshes" % (gen, len(doc)))
     if not isinstance(doc, dict):
         raise ConversionError("found %s; expected %s" % (describe(doc), EXPECTED))
     if "assembly" in doc and "blocks" in doc:  # compas_assembly's own to_json (COMPAS 1 era)
-        g = _graph_of(unwrap(doc["assembly"]))
+        g, g_at = _graph_of(*unwrap_at(doc["assembly"], "/assembly"))
         if g is None:
             raise ConversionError("found an {\"assembly\", \"blocks\"} file whose assembly has no graph; expected %s"
                                   % EXPECTED)
-        blocks = {str(k): v for k, v in (doc["blocks"] or {}).items()}
-        return _from_graph(Assembly("compas_assembly {assembly, blocks} file", "Assembly"), g, blocks)
-    data = unwrap(doc)
-    g = _graph_of(data)
+        blocks = {str(k): v for k, v in optional_object(doc["blocks"], "/blocks").items()}
+        return _from_graph(Assembly("compas_assembly {assembly, blocks} file", "Assembly"), g, g_at,
+                           blocks, "/blocks")
+    data, data_at = unwrap_at(doc)
+    g, g_at = _graph_of(data, data_at)
     if g is not None:
         gen = generation(doc) or "plain"
-        return _from_graph(Assembly("%s assembly" % gen, dtype_of(doc)), g)
+        return _from_graph(Assembly("%s assembly" % gen, dtype_of(doc)), g, g_at)
     if is_mesh(doc):
-        return _from_meshes([("0", doc)], "%s mesh" % (generation(doc) or "plain"))
+        return _from_meshes([("0", doc, "")], "%s mesh" % (generation(doc) or "plain"))
     if isinstance(data, dict) and data and all(is_mesh(v) for v in data.values()):
         gen = generation(next(iter(data.values()))) or "plain"
-        return _from_meshes(sorted(data.items()), "%s object of %d meshes" % (gen, len(data)))
+        return _from_meshes([(k, m, child(data_at, k)) for k, m in sorted(data.items())],
+                           "%s object of %d meshes" % (gen, len(data)))
     raise ConversionError("found %s; expected %s" % (describe(doc), EXPECTED))

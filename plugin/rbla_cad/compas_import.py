@@ -40,8 +40,10 @@ Usage (from plugin/)::
 
 Exit status (one line on stderr says why): 0 converted; 1 a bad option (``--friction -1``,
 ``--unit-weight nan``: the ranges of the model schema) or a file that is not a convertible
-assembly; 2 invalid input (not JSON, nested too deeply) or a block failed its checks (the model
-is still written); 4 a file that cannot be read or written. Files are read and written as the
+assembly (a layout it does not know, or a value of the wrong kind inside a known one: the message
+starts with that value's JSON pointer, ``/data/graph/data/node/3/block/data/vertex/2: expected a
+point ...``; coordinates are numbers within the model schema's bound); 2 invalid input (not JSON,
+nested too deeply) or a block failed its checks (the model is still written); 4 a file that cannot be read or written. Files are read and written as the
 solver does (``safe_files``): the input must be a regular file, a pipe or ``-`` of at most
 ``--max-input-bytes`` (devices and folders are refused before reading); the output is never the
 input, a folder, a block device or a socket, a pipe or character device is written into, and a
@@ -56,6 +58,7 @@ import os
 import sys
 
 from .compas_formats import ConversionError, read_assembly, unwrap  # noqa: F401 (re-exported)
+from .compas_formats import child, dtype_of, expect, kind_of, shown_pointer, shown_text, unwrap_at
 # Geometry helpers are shared with the rest of the core (divergence-theorem volume, Newell normal).
 from .geometry import dot as _dot, newell_normal, sub as _sub, volume_centroid
 from .jsonschema_lite import load_schema
@@ -69,6 +72,11 @@ def detection_defaults():
     (degrees), from the bundled model schema: one place for those numbers."""
     props = load_schema("model")["properties"]["detection"]["properties"]
     return props["joint_tolerance"]["default"], props["angle_tolerance"]["default"]
+
+
+def coordinate_limit():
+    """The largest coordinate magnitude the model schema allows (its vec3 bound)."""
+    return load_schema("model")["definitions"]["vec3"]["items"]["maximum"]
 
 
 def model_defaults():
@@ -141,11 +149,34 @@ def block_report(vertices, faces):
 # Mesh data
 # --------------------------------------------------------------------------------------------
 
-def _point(p):
-    p = unwrap(p)
+def _coordinate(x, pointer):
+    """A float from a JSON number within the model schema's bound (not a boolean, a string, or
+    NaN/Infinity, which Python's json module reads); the bound also keeps volumes finite."""
+    expect(x, (int, float), "a number", pointer)
+    limit = coordinate_limit()
+    try:
+        x = float(x)
+    except OverflowError:  # an integer of hundreds of digits
+        x = math.inf
+    if not abs(x) <= limit:  # also true for NaN
+        raise ConversionError("expected a coordinate within +-%g (the model schema's bound), found %s"
+                              % (limit, x), pointer)
+    return x
+
+
+def _point(p, pointer=""):
+    """[x, y, z] of a point: COMPAS vertex attributes {"x", "y", "z"}, or [x, y, z] (a COMPAS
+    Point's data, a polyhedron's vertex), wrapped or not."""
+    p, at = unwrap_at(p, pointer)
     if isinstance(p, dict):
-        return [float(p["x"]), float(p["y"]), float(p["z"])]
-    return [float(p[0]), float(p[1]), float(p[2])]
+        for c in "xyz":
+            if c not in p:
+                raise ConversionError('expected a point {"x", "y", "z"}; "%s" is missing' % c, at)
+        return [_coordinate(p[c], child(at, c)) for c in "xyz"]
+    if isinstance(p, list) and len(p) == 3:
+        return [_coordinate(c, child(at, i)) for i, c in enumerate(p)]
+    raise ConversionError('expected a point ([x, y, z] or {"x", "y", "z"}), found %s'
+                          % ("a list of %d items" % len(p) if isinstance(p, list) else kind_of(p)), at)
 
 
 def _key_order(k):
@@ -156,34 +187,58 @@ def _key_order(k):
         return (1, 0, str(k))
 
 
-def mesh_geometry(mesh, key, info):
-    """(vertices, faces) of a COMPAS mesh's data, vertices renumbered 0..n-1 in key order, unused
-    ones dropped, repeated consecutive vertices and degenerate faces removed."""
+def _face_keys(face, pointer):
+    """The vertex keys of a face, as the text of the keys of the vertex object (an index of a
+    polyhedron's vertex list is looked up the same way)."""
+    expect(face, list, "a face (a list of vertex keys)", pointer)
+    return [str(expect(v, (int, str), "a vertex key (an integer or a string)", child(pointer, i)))
+            for i, v in enumerate(face)]
+
+
+def _mesh_parts(mesh, pointer):
+    """({vertex key: (vertex, pointer)}, [(face key, vertex keys, pointer)], pointer of the
+    vertices, pointer of the faces) of halfedge data or polyhedron data."""
     if "vertex" in mesh:
-        vmap = {str(k): v for k, v in mesh["vertex"].items()}
-        fmap = mesh["face"]
-        fkeys = sorted(fmap, key=_key_order)
-        polygons = [[str(v) for v in fmap[fk]] for fk in fkeys]
-    else:  # polyhedron data: lists
-        vmap = {str(i): v for i, v in enumerate(mesh["vertices"])}
-        fkeys = list(range(len(mesh["faces"])))
-        polygons = [[str(v) for v in f] for f in mesh["faces"]]
-    used = set(v for f in polygons for v in f)
-    missing = used - set(vmap)
-    if missing:
-        raise ConversionError("node %s: faces use undefined vertices %s" % (key, sorted(missing)[:5]))
+        v_at, f_at = child(pointer, "vertex"), child(pointer, "face")
+        vertex = expect(mesh["vertex"], dict, "an object of vertices", v_at)
+        face = expect(mesh["face"], dict, "an object of faces", f_at)
+        vmap = {str(k): (v, child(v_at, k)) for k, v in vertex.items()}
+        items = [(fk, face[fk], child(f_at, fk)) for fk in sorted(face, key=_key_order)]
+    else:
+        v_at, f_at = child(pointer, "vertices"), child(pointer, "faces")
+        vertices = expect(mesh["vertices"], list, "a list of vertices", v_at)
+        faces = expect(mesh["faces"], list, "a list of faces", f_at)
+        vmap = {str(i): (v, child(v_at, i)) for i, v in enumerate(vertices)}
+        items = [(i, f, child(f_at, i)) for i, f in enumerate(faces)]
+    return vmap, [(fk, _face_keys(f, at), at) for fk, f, at in items], v_at, f_at
+
+
+def mesh_geometry(mesh, key, info, pointer=""):
+    """(vertices, faces) of a COMPAS mesh's data, vertices renumbered 0..n-1 in key order, unused
+    ones dropped, repeated consecutive vertices and degenerate faces removed. pointer: where the
+    mesh data is in the file, for messages; a value of the wrong kind, a face naming a vertex
+    the mesh does not have, or a mesh without faces is a ConversionError naming its pointer."""
+    vmap, polygons, v_at, f_at = _mesh_parts(mesh, pointer)
+    for _, polygon, at in polygons:
+        for i, v in enumerate(polygon):
+            if v not in vmap:
+                raise ConversionError("the face uses vertex %s, which %s does not have"
+                                      % (shown_text(v), shown_pointer(v_at)), child(at, i))
+    used = set(v for _, f, _ in polygons for v in f)
     vkeys = [k for k in sorted(vmap, key=_key_order) if k in used]
     info["dropped_vertices"] += len(vmap) - len(vkeys)
     index = {k: i for i, k in enumerate(vkeys)}
-    vertices = [_point(vmap[k]) for k in vkeys]
+    vertices = [_point(*vmap[k]) for k in vkeys]
     faces = []
-    for fk, polygon in zip(fkeys, polygons):
+    for fk, polygon, _ in polygons:
         f = [index[v] for v in polygon]
         f = [v for i, v in enumerate(f) if v != f[i - 1]] if len(f) > 1 else f
         if len(set(f)) < 3:
             info["problems"].append("node %s: face %s degenerate, dropped" % (key, fk))
             continue
         faces.append(f)
+    if not faces:  # nothing to make a block of (and no vertex to find the ground with)
+        raise ConversionError("the mesh has no face with three distinct vertices or more", f_at)
     return vertices, faces
 
 
@@ -221,19 +276,19 @@ def ground_contacts(blocks, joint_tolerance, angle_tolerance):
 # --------------------------------------------------------------------------------------------
 
 def _example_input_error(doc):
-    if isinstance(doc, dict) and "courses" in doc and "basecurve" in doc:
-        n = len(doc.get("courses", []))
-        dtypes = sorted({x.get("dtype", "?") if isinstance(x, dict) else type(x).__name__
-                         for c in doc["courses"] for x in c})
+    courses = doc.get("courses") if isinstance(doc, dict) and "basecurve" in doc else None
+    if isinstance(courses, list) and all(isinstance(c, list) for c in courses):
+        dtypes = sorted({(dtype_of(x) or "?") if isinstance(x, dict) else type(x).__name__
+                         for c in courses for x in c})
         raise ConversionError(
             "not an assembly: a compas_assembly example input (params, basecurve and %d courses "
             "of %s) that the example script turns into an assembly; its courses are not stacked "
             "(all at z = 0), so blocks would overlap. Convert the assembled result instead "
-            "(wall_assembly.json for the running-bond wall)." % (n, ", ".join(dtypes)))
+            "(wall_assembly.json for the running-bond wall)." % (len(courses), ", ".join(dtypes)))
 
 
-def _make_block(key, mesh, attr, wrapper, default_support, fix_orientation, info):
-    vertices, faces = mesh_geometry(mesh, key, info)
+def _make_block(key, mesh, attr, wrapper, pointer, default_support, fix_orientation, info):
+    vertices, faces = mesh_geometry(mesh, key, info, pointer)
     vol, cen, warp, problems, t_junctions = block_report(vertices, faces)
     if vol <= 0.0:
         info["volume_negative"].append(key)
@@ -249,8 +304,9 @@ def _make_block(key, mesh, attr, wrapper, default_support, fix_orientation, info
     if is_support:
         info["supports_from_file"].append(key)
     b = {"id": key}
+    attributes = mesh.get("attributes")
     label = (wrapper.get("name") if isinstance(wrapper, dict) else None) or mesh.get("name") or \
-        (mesh.get("attributes") or {}).get("name")
+        (attributes.get("name") if isinstance(attributes, dict) else None)
     if isinstance(label, str) and label:
         b["label"] = label
     b["role"] = "fixed" if is_support else "free"
@@ -288,8 +344,8 @@ def _apply_supports(blocks, supports, ground, info):
 def _stored_interfaces(asm, centroids, info):
     interfaces = []
     for u, v, polygons in sorted(asm.edges, key=lambda e: (_key_order(e[0]), _key_order(e[1]))):
-        for k, raw in enumerate(polygons):
-            pts = [_point(p) for p in raw]
+        for k, (at, raw) in enumerate(polygons):
+            pts = [_point(p, child(at, i)) for i, p in enumerate(expect(raw, list, "a list of points", at))]
             if len(pts) < 3:
                 info["problems"].append("edge %s-%s: interface %d has %d points, skipped" % (u, v, k, len(pts)))
                 continue
@@ -322,8 +378,8 @@ def convert(doc, name="", supports=(), ground="auto", with_interfaces=False,
             "supports_added": [], "ground_contacts": [], "ground_level": None, "volume_negative": [],
             "reversed": [], "t_junctions": [], "max_face_warp": 0.0, "problems": [], "interfaces": 0,
             "dropped_vertices": 0}
-    blocks = [_make_block(key, mesh, attr, wrapper, asm.default_support, fix_orientation, info)
-              for key, mesh, attr, wrapper in sorted(asm.nodes, key=lambda n: _key_order(n[0]))]
+    blocks = [_make_block(key, mesh, attr, wrapper, pointer, asm.default_support, fix_orientation, info)
+              for key, mesh, attr, wrapper, pointer in sorted(asm.nodes, key=lambda n: _key_order(n[0]))]
     _apply_supports(blocks, supports, ground, info)
     kind = (asm.dtype.split("/")[-1] if asm.dtype else "") or asm.layout
     model = {

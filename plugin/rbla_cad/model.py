@@ -40,6 +40,7 @@ import math
 import os
 
 from . import geometry as geo
+from . import safe_files
 from . import usertext
 
 SCHEMA_VERSION = "1.0.0"
@@ -651,14 +652,14 @@ class ModelBuilder(object):
         return json.dumps(self.to_dict(**kw), indent=indent)
 
     def write(self, path, indent=1, **kw):
-        """Check, then write the model JSON atomically (temporary file renamed into place)."""
+        """Check, then write the model JSON by the solver's rules (:mod:`rbla_cad.safe_files`:
+        a file is replaced atomically, keeping its permissions, a link's target written, a pipe
+        written into, "-" standard output). Returns the absolute path ("-" as given); raises
+        ModelError before anything is written, or safe_files.FileError (an OSError) naming the
+        path."""
         text = self.to_json(indent=indent, **kw) + "\n"
-        path = os.path.abspath(path)
-        tmp = path + ".tmp%d" % os.getpid()
-        with open(tmp, "w", encoding="utf-8") as f:
-            f.write(text)
-        os.replace(tmp, path)
-        return path
+        safe_files.write_output(path, text)
+        return path if path == "-" else os.path.abspath(path)
 
 
 def box(x0, x1, y0, y1, z0, z1):

@@ -13,22 +13,28 @@ What an output path leads to decides how it is written:
 * a FIFO or a character device (a pipe someone reads, a terminal, /dev/null, /dev/full): written
   into as a stream, never replaced;
 * a regular file, or nothing yet: written to a temporary file in the same folder, flushed, then
-  renamed over it (atomic on one file system), keeping the old file's permission bits;
+  renamed over it (atomic on one file system), keeping the old file's permission bits (and owner
+  and group where the system allows: as root, or a group we belong to);
 * a symbolic link: followed, its target written by the rules above (a dangling link gets its
   target created);
 * a directory, a block device or a socket: refused; so is a file we may not write, or a folder we
   may not write into (rename alone would let us replace a read-only file).
 
-On any failure the temporary file is removed and what was at the path is left as it was. Every
-refusal is a :class:`FileError` whose message is one line naming the path.
+On any failure the temporary file is removed and what was at the path is left as it was, also
+when SIGINT, SIGTERM or SIGHUP ends the process mid-write (the signal then does what it would have
+done: the handler is only there while a temporary file exists, and only over default handlers).
+Every refusal is a :class:`FileError` whose message is one line naming the path.
 """
 
 import collections
+import contextlib
 import errno
 import os
+import signal
 import stat
 import sys
 import tempfile
+import threading
 
 # The solver's --max-input-bytes default (solver/src/io/input_limits.hpp).
 MAX_INPUT_BYTES = 256 << 20
@@ -40,11 +46,12 @@ STDOUT, STREAM, REPLACE = "stdout", "stream", "replace"
 OutputTarget = collections.namedtuple("OutputTarget", "path kind target identity")
 
 
-class FileError(Exception):
-    """A file that cannot be read or written; the message names it."""
+class FileError(OSError):
+    """A file that cannot be read or written; the message names it. An OSError, so that code
+    catching what open() and os.replace() raise (ModelBuilder.write's callers) catches it too."""
 
     def __init__(self, path, message):
-        Exception.__init__(self, message)
+        OSError.__init__(self, message)  # one argument: str() is the message, no "[Errno ...]"
         self.path = path
 
 
@@ -108,6 +115,8 @@ def read_input(path, max_bytes=MAX_INPUT_BYTES):
     try:
         with open(path, "rb") as fh:
             return _read_capped(fh, path, max_bytes)
+    except FileError:
+        raise
     except OSError as e:
         raise FileError(path, "cannot read '%s': %s" % (path, e.strerror))
 
@@ -215,10 +224,82 @@ def _write_stream(out, data):
         if not (stat.S_ISFIFO(mode) or stat.S_ISCHR(mode)):
             _refuse(out.path, None, "it changed while being opened")
         _write_all(fd, data)
+    except FileError:
+        raise
     except OSError as e:
         _refuse(out.path, None, e.strerror)
     finally:
         os.close(fd)
+
+
+# --------------------------------------------------------------------------------------------
+# Temporary files removed on signals (the solver's remove_temporary_files_on_signals)
+# --------------------------------------------------------------------------------------------
+
+# Temporary files being written now: a signal that ends the process removes them first.
+_temporaries = set()
+_SIGNALS = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
+_previous_handlers = {}
+
+
+def _remove_temporaries_then_resignal(signum, frame):
+    for path in list(_temporaries):
+        _remove(path)
+    _temporaries.clear()
+    previous = _previous_handlers.get(signum, signal.SIG_DFL)
+    if callable(previous):  # Python's own SIGINT handler: KeyboardInterrupt, as without us
+        previous(signum, frame)
+        return
+    signal.signal(signum, signal.SIG_DFL)  # ended by the signal, as without us
+    signal.raise_signal(signum)
+
+
+def _install_signal_handlers():
+    """Our handler over the default ones ({signal: previous} of those replaced). Not over a
+    handler someone else set (or SIG_IGN, under nohup), and not outside the main thread, where
+    Python does not allow it: the temporary file is then left to the usual error handling."""
+    installed = {}
+    if threading.current_thread() is not threading.main_thread():
+        return installed
+    for signum in _SIGNALS:
+        previous = signal.getsignal(signum)
+        if previous in (signal.SIG_DFL, signal.default_int_handler):
+            try:
+                signal.signal(signum, _remove_temporaries_then_resignal)
+            except (ValueError, OSError):
+                continue
+            _previous_handlers[signum] = installed[signum] = previous
+    return installed
+
+
+@contextlib.contextmanager
+def _removed_on_signals(path):
+    """While this lasts, SIGINT, SIGTERM or SIGHUP ending the process removes path first. The
+    handlers are there only meanwhile: a Python handler runs only when Python code runs, so left
+    in place it could keep an idle host (Rhino) from ending on SIGTERM. Python runs a pending
+    handler before it changes one, so putting the old ones back loses no signal."""
+    installed = _install_signal_handlers()
+    _temporaries.add(path)
+    try:
+        yield
+    finally:
+        _temporaries.discard(path)
+        for signum, previous in installed.items():
+            signal.signal(signum, previous)
+
+
+def _keep_owner(fd, old):
+    """Owner and group of the replaced file where we may (root; or the group alone, when we
+    belong to it); else the new file is ours, as any new file would be. As the solver does."""
+    if not hasattr(os, "fchown") or (old.st_uid, old.st_gid) == (os.geteuid(), os.getegid()):
+        return
+    try:
+        os.fchown(fd, old.st_uid, old.st_gid)
+    except OSError:
+        try:
+            os.fchown(fd, -1, old.st_gid)
+        except OSError:
+            pass
 
 
 def _write_replace(out, data):
@@ -229,30 +310,31 @@ def _write_replace(out, data):
         fd, tmp = tempfile.mkstemp(prefix=name[:200] + ".tmp-", dir=folder)
     except OSError as e:
         _refuse(out.path, out.target, "cannot create a temporary file in '%s': %s" % (folder, e.strerror))
-    try:
+    with _removed_on_signals(tmp):
         try:
-            _write_all(fd, data)
-            os.fsync(fd)
             try:
-                old = os.stat(out.target)
-                if not stat.S_ISREG(old.st_mode):
-                    _refuse(out.path, out.target, "it changed while being written: it is no longer a regular file")
-                mode = stat.S_IMODE(old.st_mode)
-            except FileNotFoundError:
-                mode = 0o666 & ~_umask()  # a new file gets what open() would give it
-            if hasattr(os, "fchmod"):
-                os.fchmod(fd, mode)
-            else:  # Windows
-                os.chmod(tmp, mode)
-        finally:
-            os.close(fd)
-        os.replace(tmp, out.target)
-    except OSError as e:
-        _remove(tmp)
-        _refuse(out.path, out.target, e.strerror or str(e))
-    except BaseException:  # FileError, KeyboardInterrupt...: no temporary file left behind
-        _remove(tmp)
-        raise
+                _write_all(fd, data)
+                os.fsync(fd)
+                try:
+                    old = os.stat(out.target)
+                    if not stat.S_ISREG(old.st_mode):
+                        _refuse(out.path, out.target, "it changed while being written: it is no longer a regular file")
+                    _keep_owner(fd, old)  # first: a change of owner may clear set-id bits
+                    mode = stat.S_IMODE(old.st_mode)
+                except FileNotFoundError:
+                    mode = 0o666 & ~_umask()  # a new file gets what open() would give it
+                if hasattr(os, "fchmod"):
+                    os.fchmod(fd, mode)
+                else:  # Windows
+                    os.chmod(tmp, mode)
+            finally:
+                os.close(fd)
+            os.replace(tmp, out.target)
+        except BaseException as e:  # FileError, KeyboardInterrupt...: no temporary file left behind
+            _remove(tmp)
+            if isinstance(e, OSError) and not isinstance(e, FileError):
+                _refuse(out.path, out.target, e.strerror or str(e))
+            raise
 
 
 def _remove(path):

@@ -133,6 +133,140 @@ class FormatMessageTest(unittest.TestCase):
         self.assertIn("not an assembly", str(ctx.exception))
 
 
+def _set(doc, path, value):
+    """doc with the value at path (a list of keys) replaced, or removed when value is _DELETE."""
+    doc = copy.deepcopy(doc)
+    parent = doc
+    for k in path[:-1]:
+        parent = parent[k]
+    if value is _DELETE:
+        del parent[path[-1]]
+    else:
+        parent[path[-1]] = value
+    return doc
+
+
+_DELETE = object()
+TWO = "compas_assembly/two-blocks_assembly.json"
+NODE0 = ["data", "graph", "data", "node", "0"]
+MESH0 = NODE0 + ["block", "data"]
+EDGE01 = ["data", "graph", "data", "edge", "0", "1"]
+
+
+def polyhedra():
+    """The two blocks of two-blocks_assembly.json as a list of COMPAS polyhedron meshes."""
+    out = []
+    for node in load(TWO)["data"]["graph"]["data"]["node"].values():
+        m = node["block"]["data"]
+        keys = sorted(m["vertex"], key=int)
+        out.append({"dtype": "compas.datastructures/Mesh",
+                    "data": {"vertices": [[m["vertex"][k][c] for c in "xyz"] for k in keys],
+                             "faces": list(m["face"].values())}})
+    return out
+
+
+# Well-nested JSON of the right layout with a wrong value inside, made from the real files: each
+# is refused with the JSON pointer of that value (before: KeyError, TypeError, AttributeError,
+# ValueError or IndexError from deep inside the converter). (path, new value, pointer, words)
+MALFORMED_ASSEMBLY = [
+    (["data", "graph", "data", "node"], 5, "/data/graph/data/node", "found a number"),
+    (NODE0, [1, 2], "/data/graph/data/node/0", "found a list"),
+    (NODE0 + ["is_support"], "false", "/data/graph/data/node/0/is_support", "true or false"),
+    (["data", "graph", "data", "default_node_attributes"], -1,
+     "/data/graph/data/default_node_attributes", "expected an object"),
+    (MESH0 + ["vertex"], None, "/data/graph/data/node/0/block/data/vertex", "object of vertices"),
+    (MESH0 + ["vertex", "3"], "0.5 0.5 0.5", "/data/graph/data/node/0/block/data/vertex/3", "expected a point"),
+    (MESH0 + ["vertex", "3", "y"], _DELETE, "/data/graph/data/node/0/block/data/vertex/3", '"y" is missing'),
+    (MESH0 + ["vertex", "3", "x"], "0.5", "/data/graph/data/node/0/block/data/vertex/3/x", "expected a number"),
+    (MESH0 + ["vertex", "3", "x"], True, "/data/graph/data/node/0/block/data/vertex/3/x", "found a boolean"),
+    (MESH0 + ["vertex", "3", "x"], float("nan"), "/data/graph/data/node/0/block/data/vertex/3/x", "nan"),
+    (MESH0 + ["vertex", "3", "x"], 1e300, "/data/graph/data/node/0/block/data/vertex/3/x", "schema's bound"),
+    (MESH0 + ["face"], "0 1 2 3", "/data/graph/data/node/0/block/data/face", "object of faces"),
+    (MESH0 + ["face"], {}, "/data/graph/data/node/0/block/data/face", "no face"),
+    (MESH0 + ["face", "2"], 7, "/data/graph/data/node/0/block/data/face/2", "a face"),
+    (MESH0 + ["face", "2", 1], 99, "/data/graph/data/node/0/block/data/face/2/1", "vertex \"99\""),
+    (MESH0 + ["face", "2", 1], {"key": 2}, "/data/graph/data/node/0/block/data/face/2/1", "vertex key"),
+    (MESH0 + ["attributes"], 5, None, None),  # a name not given as an object is no label: accepted
+    (["data", "graph", "data", "edge"], [], "/data/graph/data/edge", "expected an object"),
+    (EDGE01 + ["interfaces"], "none", "/data/graph/data/edge/0/1/interfaces", "list of interfaces"),
+    (EDGE01 + ["interfaces", 0, "data"], 3, "/data/graph/data/edge/0/1/interfaces/0/data", "interface object"),
+    (EDGE01 + ["interfaces", 0, "data", "points"], 4, "/data/graph/data/edge/0/1/interfaces/0/data/points",
+     "list of points"),
+    (EDGE01 + ["interfaces", 0, "data", "points", 2, "data"], [0.5, 0.5],
+     "/data/graph/data/edge/0/1/interfaces/0/data/points/2/data", "a list of 2 items"),
+]
+
+
+class MalformedInputTest(unittest.TestCase):
+    """Every malformed value is a ConversionError whose message starts with its JSON pointer."""
+
+    def refused(self, doc, pointer, words, **options):
+        with self.assertRaises(ConversionError) as ctx:
+            compas_import.convert(doc, with_interfaces=True, **options)
+        message = str(ctx.exception)
+        self.assertTrue(message.startswith(pointer + ": "), message)
+        if words:
+            self.assertIn(words, message)
+        self.assertNotIn("\n", message)
+        return message
+
+    def test_wrong_values_in_an_assembly_name_their_pointer(self):
+        doc = load(TWO)
+        for path, value, pointer, words in MALFORMED_ASSEMBLY:
+            with self.subTest(path="/".join(map(str, path)), value=value):
+                bad = _set(doc, path, value)
+                if pointer is None:
+                    compas_import.convert(bad, with_interfaces=True)
+                else:
+                    self.refused(bad, pointer, words)
+
+    def test_a_dtype_that_is_not_text_is_no_dtype(self):
+        model, info = compas_import.convert(_set(load(TWO), ["dtype"], 7))
+        self.assertEqual(len(model["blocks"]), 2)
+        self.assertEqual(info["dtype"], "")
+
+    def test_wrong_values_in_polyhedra_name_their_pointer(self):
+        doc = polyhedra()
+        for path, value, pointer, words in [
+                ([0, "data", "vertices"], {"0": [0, 0, 0]}, "/0/data/vertices", "list of vertices"),
+                ([1, "data", "vertices", 2], "x", "/1/data/vertices/2", "expected a point"),
+                ([1, "data", "vertices", 2], [0, 0], "/1/data/vertices/2", "a list of 2 items"),
+                ([1, "data", "faces"], None, "/1/data/faces", "list of faces"),
+                ([1, "data", "faces", 0], "0123", "/1/data/faces/0", "a face"),
+                ([1, "data", "faces", 0, 2], 8, "/1/data/faces/0/2", "vertex \"8\""),
+                ([1, "data", "faces", 0, 2], -1, "/1/data/faces/0/2", "vertex \"-1\""),
+                ([1, "data", "faces", 0, 2], 2.0, "/1/data/faces/0/2", "vertex key")]:
+            with self.subTest(path="/".join(map(str, path)), value=value):
+                self.refused(_set(doc, path, value), pointer, words)
+
+    def test_compas1_blocks_file_names_its_pointer(self):
+        graph = copy.deepcopy(load(TWO)["data"]["graph"]["data"])
+        blocks = {k: as_compas1(n.pop("block")) for k, n in graph["node"].items()}
+        graph["dna"] = graph.pop("default_node_attributes")
+        self.refused({"assembly": graph, "blocks": []}, "/blocks", "expected an object")
+        blocks["1"]["value"]["vertex"]["4"]["z"] = None
+        self.refused({"assembly": graph, "blocks": blocks}, "/blocks/1/value/vertex/4/z", "found null")
+        graph["dna"] = "none"
+        self.refused({"assembly": graph, "blocks": blocks}, "/assembly/dna", "expected an object")
+
+    def test_keys_with_control_characters_stay_on_one_line(self):
+        doc = load(TWO)
+        mesh = doc["data"]["graph"]["data"]["node"]["0"]["block"]["data"]
+        mesh["face"]["2"][1] = "x\ny"
+        message = self.refused(doc, "/data/graph/data/node/0/block/data/face/2/1", "x\\ny")
+        doc = load(TWO)
+        doc["data"]["graph"]["data"]["node"]["a\nb"] = 3
+        message = self.refused(doc, "/data/graph/data/node/a\\u000ab", "expected an object")
+        self.assertNotIn("\n", message)
+
+    def test_the_example_input_with_wrong_courses_is_described_not_crashed(self):
+        doc = load("compas_assembly/wall.json")
+        for courses in (None, [1, 2], [[{"dtype": 3}]]):
+            with self.subTest(courses=courses):
+                with self.assertRaises(ConversionError):
+                    compas_import.convert(dict(doc, courses=courses))
+
+
 class GroundContactTest(unittest.TestCase):
     def test_every_foot_of_an_imperfect_vault_is_fixed(self):
         # The generator's vault without its slab, as meshes: 2 nv feet at z = 0 (by construction:

@@ -8,6 +8,7 @@ an exit code, never a traceback (1 bad option, 2 invalid input, 4 a file error).
 import json
 import os
 import shutil
+import signal
 import stat
 import subprocess
 import sys
@@ -207,6 +208,32 @@ class CompasImportFilesTest(unittest.TestCase):
         self.assertRefused(convert(deep, "-o", self.path("m.json")), 2, "too deeply nested")
         self.assertFalse(os.path.exists(self.path("m.json")))
 
+    def test_malformed_values_are_refused_with_their_pointer_without_a_traceback(self):
+        # well-nested JSON of the right layout, wrong inside: before, a Python traceback
+        with open(self.input) as f:
+            arch = json.load(f)
+        cases = [("vertices as text", "/data/graph/data/node/3/block/data/vertex/2",
+                  lambda d: d["block"]["data"]["vertex"].__setitem__("2", "1 2 3")),
+                 ("face out of range", "/data/graph/data/node/3/block/data/face/1/0",
+                  lambda d: d["block"]["data"]["face"]["1"].__setitem__(0, 12345)),
+                 ("number for a mesh's faces", "/data/graph/data/node/3/block/data/face",
+                  lambda d: d["block"]["data"].__setitem__("face", 6)),
+                 ("number for a node", "/data/graph/data/node/3", None)]
+        out = self.path("m.json")
+        for name, pointer, spoil in cases:
+            with self.subTest(name):
+                doc = json.loads(json.dumps(arch))
+                target = doc["data"]["graph"]["data"]["node"]
+                if spoil is None:
+                    target["3"] = 7
+                else:
+                    spoil(target["3"])
+                bad = self.path("bad.json")
+                with open(bad, "w") as f:
+                    json.dump(doc, f)
+                self.assertRefused(convert(bad, "-o", out), 1, "%s: cannot convert: %s: " % (bad, pointer))
+                self.assertFalse(os.path.exists(out))
+
     # ---- options ----------------------------------------------------------------------------
     def test_option_values_outside_the_schema_ranges_are_refused(self):
         out = self.path("m.json")
@@ -248,6 +275,66 @@ class SafeFilesTest(unittest.TestCase):
         mask = os.umask(0)
         os.umask(mask)
         self.assertEqual(stat.S_IMODE(os.stat(out).st_mode), 0o666 & ~mask)
+
+    def test_a_replaced_file_keeps_its_owner_and_group_where_allowed(self):
+        out = os.path.join(self.dir, "owned.json")
+        with open(out, "w") as f:
+            f.write("old\n")
+        if os.geteuid() == 0:
+            owner = (4321, 4322)  # root may give the new file anyone's
+        else:
+            others = [g for g in os.getgroups() if g != os.getegid()]
+            if not others:
+                self.skipTest("not root and in no second group: nothing to keep")
+            owner = (os.geteuid(), others[0])
+        os.chown(out, *owner)
+        safe_files.write_output(out, "new\n")
+        st = os.stat(out)
+        self.assertEqual((st.st_uid, st.st_gid), owner)
+        with open(out) as f:
+            self.assertEqual(f.read(), "new\n")
+
+    # A writer that signals itself just after flushing its temporary file, as a kill would.
+    SIGNALLED_WRITER = """
+import os, signal, sys
+sys.path.insert(0, sys.argv[1])
+from rbla_cad import safe_files
+sig = int(sys.argv[3])
+if sys.argv[4] == "ignored":
+    signal.signal(sig, signal.SIG_IGN)  # as under nohup: not ours to change
+fsync = os.fsync
+def fsync_then_signal(fd):
+    fsync(fd)
+    os.kill(os.getpid(), sig)
+os.fsync = fsync_then_signal
+safe_files.write_output(sys.argv[2], "new\\n")
+print("survived")
+"""
+
+    @unittest.skipUnless(hasattr(signal, "SIGHUP"), "POSIX signals")
+    def test_a_signal_mid_write_removes_the_temporary_file_and_still_ends_the_process(self):
+        out = os.path.join(self.dir, "out.json")
+        for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGINT):
+            with self.subTest(signal=sig.name):
+                with open(out, "w") as f:
+                    f.write("old\n")
+                r = subprocess.run([sys.executable, "-c", self.SIGNALLED_WRITER, _support.PLUGIN, out,
+                                    str(int(sig)), "default"], capture_output=True, timeout=60)
+                self.assertEqual(r.returncode, -sig, r.stderr)  # ended by the signal, as without us
+                self.assertEqual(os.listdir(self.dir), ["out.json"])
+                with open(out) as f:
+                    self.assertEqual(f.read(), "old\n")
+        # an ignored signal stays ignored: the write completes
+        r = subprocess.run([sys.executable, "-c", self.SIGNALLED_WRITER, _support.PLUGIN, out,
+                            str(int(signal.SIGHUP)), "ignored"], capture_output=True, timeout=60)
+        self.assertEqual((r.returncode, r.stdout.strip()), (0, b"survived"), r.stderr)
+        with open(out) as f:
+            self.assertEqual(f.read(), "new\n")
+
+    def test_the_signal_handlers_are_put_back_after_a_write(self):
+        before = {sig: signal.getsignal(sig) for sig in safe_files._SIGNALS}
+        safe_files.write_output(os.path.join(self.dir, "x.json"), "x\n")
+        self.assertEqual({sig: signal.getsignal(sig) for sig in safe_files._SIGNALS}, before)
 
     def test_missing_folder_and_empty_path_are_refused(self):
         for bad in ("", os.path.join(self.dir, "no", "such", "x.json")):

@@ -2,6 +2,7 @@
 
 import json
 import os
+import stat
 import tempfile
 import unittest
 
@@ -90,6 +91,28 @@ class BuildTest(unittest.TestCase):
                 doc = json.load(f)
         self.assertEqual(len(doc["blocks"]), 4)
         self.assertEqual(block_centroids(doc)["B0"][2], 0.25)
+
+    def test_write_follows_the_solvers_rules_for_outputs(self):
+        # one place for them (rbla_cad.safe_files): permission bits kept, a link's target written,
+        # a folder refused with an OSError naming it and no temporary file left
+        mb = column_builder()
+        with tempfile.TemporaryDirectory() as d:
+            target = os.path.join(d, "target.json")
+            with open(target, "w") as f:
+                f.write("old\n")
+            os.chmod(target, 0o640)
+            os.symlink("target.json", os.path.join(d, "link.json"))
+            self.assertEqual(mb.write(os.path.join(d, "link.json")), os.path.join(d, "link.json"))
+            self.assertTrue(os.path.islink(os.path.join(d, "link.json")))
+            self.assertEqual(stat.S_IMODE(os.stat(target).st_mode), 0o640)
+            with open(target) as f:
+                self.assertEqual(len(json.load(f)["blocks"]), 4)
+            folder = os.path.join(d, "folder")
+            os.mkdir(folder)
+            with self.assertRaises(OSError) as ctx:
+                mb.write(folder)
+            self.assertIn(folder, str(ctx.exception))
+            self.assertEqual(sorted(os.listdir(d)), ["folder", "link.json", "target.json"])
 
     def test_interfaces_labels_and_friction(self):
         mb = column_builder(default_friction=0.7)

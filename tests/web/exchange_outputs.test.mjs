@@ -1,13 +1,14 @@
 // .3dm exchange outputs, written by the solver's rules (plugin/exchange/lib/cli.mjs): an output that
 // is an input is refused (however spelled), a link is followed (the link stays a link), a folder is
 // refused with no temporary file left, a FIFO or character device is written into (never replaced),
-// a replaced file keeps its permission bits, '-' is standard output.
+// a replaced file keeps its permission bits (and owner and group where allowed), a signal mid-write
+// leaves the old file and no temporary file, '-' is standard output.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { spawn } from 'node:child_process';
-import { EXCHANGE, SAMPLES, node, run, tmpDir, solve, rblaExe } from './helpers.mjs';
+import { EXCHANGE, SAMPLES, node, run, tmpDir, solve, rblaExe, charDevice } from './helpers.mjs';
 
 let dir, model, f3dm, result;
 const noTemporary = () => assert.deepEqual(fs.readdirSync(dir).filter((n) => n.includes('.tmp')), []);
@@ -25,16 +26,7 @@ before(() => {
 
 after(() => { fs.rmSync(dir, { recursive: true, force: true }); });
 
-/** A character device like /dev/<name>: as root a new node in the test folder (so a script that
- *  replaced its output would replace only that copy), else the real one (only root could replace it). */
-function device(name, major, minor) {
-  if (process.getuid && process.getuid() === 0) {
-    const p = path.join(dir, name);
-    const r = run('mknod', ['-m', '666', p, 'c', String(major), String(minor)]);
-    return r.code === 0 ? p : null;
-  }
-  return fs.existsSync(`/dev/${name}`) ? `/dev/${name}` : null;
-}
+const device = (name, major, minor) => charDevice(dir, name, major, minor);
 
 test('3dm-to-model refuses to write over its input, however spelled', () => {
   const before = bytes(f3dm);
@@ -105,6 +97,51 @@ test('a replaced file keeps its permission bits', () => {
   assert.equal(r.code, 0, r.stderr);
   assert.equal(fs.statSync(out).mode & 0o7777, 0o640);
   assert.equal(JSON.parse(fs.readFileSync(out, 'utf8')).blocks.length, 18);
+});
+
+test('a replaced file keeps its owner and group where allowed', (t) => {
+  const out = path.join(dir, 'owned.json');
+  fs.writeFileSync(out, 'old\n');
+  let owner;
+  if (process.getuid?.() === 0) owner = [4321, 4322];  // root may give the new file anyone's
+  else {
+    const other = (process.getgroups?.() || []).find((g) => g !== process.getegid());
+    if (other === undefined) { t.skip('not root and in no second group: nothing to keep'); return; }
+    owner = [process.getuid(), other];
+  }
+  fs.chownSync(out, ...owner);
+  const r = node('3dm-to-model.mjs', [f3dm, '-o', out]);
+  assert.equal(r.code, 0, r.stderr);
+  const st = fs.statSync(out);
+  assert.deepEqual([st.uid, st.gid], owner);
+  assert.equal(JSON.parse(fs.readFileSync(out, 'utf8')).blocks.length, 18);
+});
+
+// A writer that signals itself once its data is flushed, as a kill mid-write would; fsync then
+// holds its answer (as a slow disk would), so the signal comes before the rename.
+const SIGNALLED_WRITER = `
+import fs from 'node:fs';
+import { pathToFileURL } from 'node:url';
+const [cli, out, sig] = process.argv.slice(1);
+const { writeOutput } = await import(pathToFileURL(cli).href);
+const fsync = fs.fsync, fsyncSync = fs.fsyncSync;
+fs.fsync = (fd, callback) => fsync(fd, (e) => { process.kill(process.pid, sig); setTimeout(() => callback(e), 30000); });
+fs.fsyncSync = (fd) => { fsyncSync(fd); process.kill(process.pid, sig); };
+await writeOutput(out, 'new\\n');
+process.stdout.write('survived');
+`;
+
+test('a signal mid-write removes the temporary file and still ends the process', { skip: process.platform === 'win32' }, () => {
+  const sub = path.join(dir, 'signalled');
+  fs.mkdirSync(sub);
+  const out = path.join(sub, 'out.json');
+  for (const sig of ['SIGTERM', 'SIGHUP', 'SIGINT']) {
+    fs.writeFileSync(out, 'old\n');
+    const r = run(process.execPath, ['--input-type=module', '-e', SIGNALLED_WRITER, path.join(EXCHANGE, 'lib', 'cli.mjs'), out, sig]);
+    assert.equal(r.signal, sig, `${sig}: ended by it, as without a handler (${r.stdout} ${r.stderr})`);
+    assert.deepEqual(fs.readdirSync(sub), ['out.json'], `${sig}: no temporary file`);
+    assert.equal(fs.readFileSync(out, 'utf8'), 'old\n', `${sig}: the old file untouched`);
+  }
 });
 
 test('character devices are written into, never replaced', (t) => {

@@ -26,7 +26,7 @@ export function tmpDir(prefix = 'rbla-web-') {
 
 export function run(cmd, args, opts = {}) {
   const r = spawnSync(cmd, args, { encoding: 'utf8', timeout: 60000, ...opts });
-  return { code: r.status, stdout: r.stdout || '', stderr: r.stderr || '', error: r.error };
+  return { code: r.status, signal: r.signal, stdout: r.stdout || '', stderr: r.stderr || '', error: r.error };
 }
 
 export function node(script, args) {
@@ -58,4 +58,16 @@ export function solve(modelPath, resultPath) {
   const r = run(exe, ['solve', modelPath, '-o', resultPath]);
   if (r.code !== 0) throw new Error(`rbla solve ${modelPath} exited ${r.code}: ${r.stderr}`);
   return readJson(resultPath);
+}
+
+/** A character device like /dev/<name> (Linux major 1): as root a new node in dir (so a script that
+ *  replaced it would replace only that copy), else the real one (only root could replace it); null
+ *  when there is none. */
+export function charDevice(dir, name, major, minor) {
+  if (process.getuid && process.getuid() === 0) {
+    const p = path.join(dir, name);
+    const r = run('mknod', ['-m', '666', p, 'c', String(major), String(minor)]);
+    return r.code === 0 ? p : null;
+  }
+  return fs.existsSync(`/dev/${name}`) ? `/dev/${name}` : null;
 }
