@@ -8,9 +8,47 @@
 
 #include <iostream>
 #include <optional>
+#include <string>
+#include <utility>
 
 namespace rbla::cli {
 namespace {
+
+/// --dump-problem: the conic problem, kept when the analysis has built it and written after the
+/// solve, failed or not, so that an interrupted run leaves the file as it was, like every output.
+class ProblemDump {
+ public:
+  explicit ProblemDump(std::string path) : path_(std::move(path)) {}
+  void attach(analysis::AnalysisOptions& options) {
+    if (path_.empty()) return;
+    options.problem_ready = [this](const conic::ConicProblem& problem) {
+      io::check_problem_file(path_, problem);  // an MPS of a conic problem: refused before the solve
+      problem_ = problem;
+    };
+  }
+  void write() const {
+    if (problem_) io::write_problem_file(path_, *problem_);
+  }
+
+ private:
+  std::string path_;
+  std::optional<conic::ConicProblem> problem_;
+};
+
+/// The progress line after the analysis: how long the solves took and how many iterations.
+std::string solve_summary(const analysis::AnalysisResult& result) {
+  if (!result.solver_ran) return "no solve ran (assembly " + seconds_text(result.assemble_seconds) + ")";
+  const bool stopped = result.verdict == analysis::Verdict::TimeLimit ||
+                       result.verdict == analysis::Verdict::IterationLimit ||
+                       result.verdict == analysis::Verdict::Cancelled;
+  const std::string steps =
+      result.non_associative.empty()
+          ? std::string()
+          : ", " + analysis::count(result.non_associative.size() - 1, "non-associative step", "non-associative steps");
+  return std::string(stopped ? "stopped after " : "solved in ") + seconds_text(result.solve_seconds) + " (" +
+         std::to_string(result.solver_info.iterations) + " interior-point iterations" + steps + "; assembly " +
+         seconds_text(result.assemble_seconds) + ")";
+}
 
 int run_solve(const CommonOptions& options) {
   const auto start = Clock::now();
@@ -22,19 +60,9 @@ int run_solve(const CommonOptions& options) {
 
   analysis::AnalysisOptions analysis_options;
   analysis_options.log = options.verbose ? &std::cerr : nullptr;
-  // Kept and written after the solve, failed or not: an interrupted run leaves the file as it
-  // was, like every other output.
-  std::optional<conic::ConicProblem> to_dump;
-  if (!options.dump_problem_path.empty()) {
-    analysis_options.problem_ready = [&](const conic::ConicProblem& problem) {
-      io::check_problem_file(options.dump_problem_path, problem);
-      to_dump = problem;
-    };
-  }
-  const auto write_dump = [&] {
-    if (to_dump) io::write_problem_file(options.dump_problem_path, *to_dump);
-  };
   analysis_options.threads = options.threads;
+  ProblemDump dump(options.dump_problem_path);
+  dump.attach(analysis_options);
   progress(options, std::string("analysis: ") + model::to_string(m.analysis.type) + ", " +
                         model::to_string(m.analysis.friction_model) + " friction, cone " +
                         model::to_string(m.analysis.cone));
@@ -44,29 +72,16 @@ int run_solve(const CommonOptions& options) {
   } catch (const model::ModelError& error) {
     return report_invalid(error);
   } catch (const conic::ConicResourceError&) {
-    write_dump();
+    dump.write();
     throw;  // main ends the run: out of memory
   } catch (const conic::ConicSetupError& error) {
     std::cerr << "rbla: conic problem: " << error.what() << "\n";
-    write_dump();
+    dump.write();
     return kSolverFailure;
   }
-  write_dump();
+  dump.write();
   report_warnings(result.warnings, options);
-  if (result.solver_ran) {
-    const bool stopped = result.verdict == analysis::Verdict::TimeLimit ||
-                         result.verdict == analysis::Verdict::IterationLimit ||
-                         result.verdict == analysis::Verdict::Cancelled;
-    progress(options, std::string(stopped ? "stopped after " : "solved in ") + seconds_text(result.solve_seconds) + " (" +
-                          std::to_string(result.solver_info.iterations) + " interior-point iterations" +
-                          (result.non_associative.empty()
-                               ? std::string()
-                               : ", " + analysis::count(result.non_associative.size() - 1, "non-associative step",
-                                                        "non-associative steps")) +
-                          "; assembly " + seconds_text(result.assemble_seconds) + ")");
-  } else {
-    progress(options, "no solve ran (assembly " + seconds_text(result.assemble_seconds) + ")");
-  }
+  progress(options, solve_summary(result));
   (stdout_taken ? std::cerr : std::cout) << shown(result.verdict_text) << "\n";
 
   ExtraOutput extra;
