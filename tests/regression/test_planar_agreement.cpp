@@ -32,6 +32,8 @@ struct Scene {
   json model;
 };
 
+json cap_with_far_marker();
+
 std::vector<Scene> scenes() {
   std::vector<Scene> out;
   const fs::path dir = fs::path(RBLA_SOURCE_DIR) / "samples";
@@ -51,7 +53,22 @@ std::vector<Scene> scenes() {
     model["analysis"] = {{"type", "load_multiplier"}, {"seismic", {{"direction", {1.0 - load_y, load_y, 0.0}}}}};
     out.push_back({"slab_edge_before_centroid_load_" + std::string(load_y > 0 ? "y" : "x"), model});
   }
+  out.push_back({"cap_overhanging_its_pier_and_a_far_marker", cap_with_far_marker()});
   return out;
+}
+
+/// A cap stone on a pier, overhanging it by 0.3 m along y (its centroid beyond the pier's edge:
+/// it cannot stand), loaded along x, and a fixed marker block 3 km away touching nothing (a
+/// survey point in a georeferenced export). The marker made the model 4 km across; the extrusion
+/// tests then took the overhang for CAD noise and the planar LP reported a collapse at 0.38.
+json cap_with_far_marker() {
+  using rbla::testing::box_block;
+  json model = rbla::testing::model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"),
+                                                      box_block("pier", 0, 0, 0, 0.5, 0.5, 0.5),
+                                                      box_block("cap", 0, 0.3, 0.5, 0.5, 0.8, 0.8),
+                                                      box_block("marker", 3000, 3000, 0, 3001, 3001, 1, "fixed")}));
+  model["analysis"] = {{"type", "load_multiplier"}, {"seismic", {{"direction", {1.0, 0.0, 0.0}}}}};
+  return model;
 }
 
 /// The verdict and value of the scene with the formulation forced; analysis settings that do not
@@ -104,6 +121,16 @@ TEST(PlanarAgreement, PlanarEqualsThreeDWhereverAutoPicksPlanar) {
   EXPECT_GE(planar, 40u);
   EXPECT_GE(compared, 30u);
   std::cout << "[          ] " << planar << " planar scenes, " << compared << " collapse values compared\n";
+}
+
+// The extrusion tests' tolerance is the blocks' scale, not the model's extent: a far block must
+// not turn an overhang into CAD noise.
+TEST(PlanarAgreement, AFarBlockDoesNotMakeAnOverhangPlanar) {
+  const auto loaded = rbla::io::load_model_text(cap_with_far_marker().dump());
+  const rbla::analysis::PlanarFrame frame = rbla::analysis::detect_planar(loaded.model);
+  EXPECT_FALSE(frame.planar);
+  const auto r = rbla::analysis::analyse(loaded.model);
+  EXPECT_STREQ(rbla::analysis::to_string(r.verdict), rbla::analysis::to_string(Verdict::CannotStand));
 }
 
 // A block that is narrower along y in its upper half (an L in the y-z plane, extruded along x)

@@ -34,11 +34,57 @@ Vec3 axis_vector(int axis) {
 /// part of the depth (a block overhanging the edge of its support along the axis) carries a
 /// moment about the in-plane axes that the planar rows drop.
 
+struct Scales {
+  double length = 1.0;
+  double force = 1.0;
+};
+
+/// Mean block size and mean free-block weight: O(1) coefficients whatever the user's units.
+Scales choose_scales(const model::Model& m) {
+  Scales s;
+  double size_sum = 0.0, weight_sum = 0.0;
+  int count = 0, weighted = 0;
+  for (const model::Block& block : m.blocks) {
+    if (block.is_support()) continue;
+    Vec3 lo = block.vertices[0], hi = block.vertices[0];
+    for (const Vec3& v : block.vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+    size_sum += (hi - lo).norm();
+    ++count;
+    if (block.weight() > 0.0) {
+      weight_sum += block.weight();
+      ++weighted;
+    }
+  }
+  if (count > 0 && size_sum > 0.0) s.length = size_sum / count;
+  if (weighted > 0) {
+    s.force = weight_sum / weighted;
+  } else {
+    double load_sum = 0.0;
+    for (const auto& load : m.live_loads) load_sum += load.force.norm();
+    if (load_sum > 0.0) s.force = load_sum / static_cast<double>(m.live_loads.size());
+  }
+  return s;
+}
+
+/// Length below which two coordinates count as one in the extrusion tests and in the planar
+/// corner groups: 1e-4 (kModelRelativeTolerance) of the mean free block's size, or the model's
+/// distance tolerance when that is smaller. Not that tolerance alone: it grows with the model's
+/// extent and with a gap tolerance set for detection, neither of which says whether the blocks
+/// form an extrusion (a fixed block 3 km away let a cap stone overhanging its pier by 0.3 m pass
+/// as planar, and the planar LP reported a collapse at 0.38 for a block that cannot stand). A
+/// smaller tolerance can only send a model to the 3-D formulation, which is exact for every model.
+double extrusion_tolerance(const model::Model& m) {
+  return std::min(m.distance_tolerance(), model::kModelRelativeTolerance * choose_scales(m).length);
+}
+
 /// Why the free blocks are not right prisms along `axis` over one depth [lo, hi]; empty when they are.
 std::string prism_obstacle(const model::Model& m, int axis, double& lo, double& hi) {
   const Vec3 e = axis_vector(axis);
   const std::string name = std::string(1, static_cast<char>('x' + axis));
-  const double tol = m.distance_tolerance();
+  const double tol = extrusion_tolerance(m);
   const model::Block* first = nullptr;
   for (const model::Block& block : m.blocks) {
     // A support enters the problem only through its interfaces, which are checked apart.
@@ -76,7 +122,7 @@ std::string prism_obstacle(const model::Model& m, int axis, double& lo, double& 
 std::string interface_obstacle(const model::Model& m, int axis, double lo, double hi) {
   const Vec3 e = axis_vector(axis);
   const std::string name = std::string(1, static_cast<char>('x' + axis));
-  const double tol = m.distance_tolerance();
+  const double tol = extrusion_tolerance(m);
   for (const auto& contact : m.interfaces) {
     if (std::abs(contact.normal.dot(e)) > 1e-9) return "interface '" + contact.id + "' is not parallel to " + name;
     const Vec3 t = e.cross(contact.normal).normalized();
@@ -99,7 +145,7 @@ std::string interface_obstacle(const model::Model& m, int axis, double lo, doubl
 std::string load_obstacle(const model::Model& m, int axis, double mid) {
   const Vec3 e = axis_vector(axis);
   const std::string name = std::string(1, static_cast<char>('x' + axis));
-  const double tol = m.distance_tolerance();
+  const double tol = extrusion_tolerance(m);
   const model::AnalysisRequest& a = m.analysis;
   if (a.seismic_direction && std::abs(a.seismic_direction->dot(e)) > kParallelTolerance) {
     return "the seismic direction has a component along " + name;
@@ -130,41 +176,6 @@ std::string planar_obstacle(const model::Model& m, int axis, double& depth) {
   if (obstacle.empty()) obstacle = load_obstacle(m, axis, 0.5 * (lo + hi));
   depth = hi - lo;
   return obstacle;
-}
-
-struct Scales {
-  double length = 1.0;
-  double force = 1.0;
-};
-
-/// Mean block size and mean free-block weight: O(1) coefficients whatever the user's units.
-Scales choose_scales(const model::Model& m) {
-  Scales s;
-  double size_sum = 0.0, weight_sum = 0.0;
-  int count = 0, weighted = 0;
-  for (const model::Block& block : m.blocks) {
-    if (block.is_support()) continue;
-    Vec3 lo = block.vertices[0], hi = block.vertices[0];
-    for (const Vec3& v : block.vertices) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-    size_sum += (hi - lo).norm();
-    ++count;
-    if (block.weight() > 0.0) {
-      weight_sum += block.weight();
-      ++weighted;
-    }
-  }
-  if (count > 0 && size_sum > 0.0) s.length = size_sum / count;
-  if (weighted > 0) {
-    s.force = weight_sum / weighted;
-  } else {
-    double load_sum = 0.0;
-    for (const auto& load : m.live_loads) load_sum += load.force.norm();
-    if (load_sum > 0.0) s.force = load_sum / static_cast<double>(m.live_loads.size());
-  }
-  return s;
 }
 
 /// One variable of a contact point before indices are assigned.
@@ -345,7 +356,7 @@ std::vector<std::vector<int>> corner_groups(const model::ContactInterface& conta
 /// The contact points of every interface (into f.points) and the friction variables of each.
 std::vector<PointSpec> contact_points(const model::Model& m, const FormulationOptions& options,
                                       const ForceScales& loads, Formulation& f) {
-  const double tol = m.distance_tolerance();
+  const double tol = extrusion_tolerance(m);
   std::vector<PointSpec> specs;
   for (std::size_t i = 0; i < m.interfaces.size(); ++i) {
     const model::ContactInterface& contact = m.interfaces[i];
