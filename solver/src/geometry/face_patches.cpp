@@ -41,32 +41,6 @@ double polygon_diameter(const std::vector<Vec3>& vertices, const std::vector<int
 
 namespace {
 
-/// One representative index per position: vertices closer than `eps` (exports repeat a corner
-/// once per face) map to the smallest index among them. Sort along x, then compare neighbours
-/// within eps: O(n log n) for blocks without large clusters.
-std::vector<int> weld(const std::vector<Vec3>& vertices, double eps) {
-  const int n = static_cast<int>(vertices.size());
-  std::vector<int> order(n), rep(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::iota(rep.begin(), rep.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return vertices[a].x() < vertices[b].x() || (vertices[a].x() == vertices[b].x() && a < b);
-  });
-  for (int i = 0; i < n; ++i) {
-    const int a = order[i];
-    for (int j = i + 1; j < n && vertices[order[j]].x() - vertices[a].x() <= eps; ++j) {
-      const int b = order[j];
-      if ((vertices[a] - vertices[b]).norm() <= eps) rep[b] = std::min(rep[b], rep[a]);
-    }
-  }
-  for (int i = 0; i < n; ++i) {
-    int r = rep[i];
-    while (rep[r] != r) r = rep[r];
-    rep[i] = r;
-  }
-  return rep;
-}
-
 struct BlockFaces {
   std::vector<std::vector<int>> faces;  // welded vertex indices, consecutive repeats removed
   std::vector<Vec3> area_vectors;
@@ -79,7 +53,9 @@ BlockFaces welded_faces(const model::Block& block) {
     lo = lo.cwiseMin(v);
     hi = hi.cwiseMax(v);
   }
-  const std::vector<int> rep = weld(block.vertices, 1e-9 * (hi - lo).norm());
+  // The closure check's welding (polyhedron.hpp): its own pairwise rule, smallest index of the
+  // pair, split a corner whose copies were rounded apart and sorted out of index order.
+  const std::vector<int> rep = merge_close_vertices(block.vertices, kVertexWeldRelative * (hi - lo).norm());
   BlockFaces out;
   const int num_faces = static_cast<int>(block.faces.size());
   out.faces.resize(num_faces);

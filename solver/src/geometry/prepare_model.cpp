@@ -116,7 +116,7 @@ bool faces_sound(const model::Block& block, const BlockChecks& c, std::vector<Wa
 bool closed(const model::Block& block, const BlockChecks& c) {
   // Vertices closer than this are the same vertex; relative to the block so that a 1 mm wedge in
   // a 100 m model is still checked at its own scale.
-  const double merge_tol = std::min(c.model_tolerance, 1e-6 * c.diagonal);
+  const double merge_tol = std::min(c.model_tolerance, kVertexWeldRelative * c.diagonal);
   const ClosureCheck closure = check_closure(block.vertices, block.faces, merge_tol);
   if (!closure.consistent) {
     c.errors.push_back({c.pointer + "/faces", c.name + " has inconsistently oriented faces: " + closure.detail});
