@@ -60,6 +60,16 @@ TEST(Overlap, TwoBlocksInTheSamePlaceAreRefused) {
   EXPECT_NE(error.find("blocks 'A' and 'B' overlap: 2 m3 in common (100 % of the smaller"), std::string::npos) << error;
 }
 
+// The model's tolerance grows with its extent: a fixed marker block 3 km away made it 0.42 m, and
+// two 1 m boxes sharing 3 % of their volume (3 cm deep) were accepted as touching. Checks between
+// blocks now use at most 1 % of the mean block's size.
+TEST(Overlap, AFarBlockDoesNotHideAnOverlap) {
+  json model = two_blocks(box_block("A", 0, 0, 0, 1, 1, 1), box_block("B", 0.97, 0, 0, 1.97, 1, 1));
+  model["blocks"].push_back(box_block("marker", 3000, 3000, 0, 3001, 3001, 1, "fixed"));
+  const std::string error = load_error(model);
+  EXPECT_NE(error.find("blocks 'A' and 'B' overlap: 0.03 m3 in common (3 % of the smaller"), std::string::npos) << error;
+}
+
 // Closed form: boxes [0,2]^3 and [1,3] x [0.5,2.5] x [0,2] share 1 x 1.5 x 2 = 3 m3; the same
 // after an arbitrary rotation and in millimetres (the message then speaks mm3).
 TEST(Overlap, CommonVolumeOfTwoBoxesIsExactRotatedAndInMillimetres) {

@@ -18,6 +18,13 @@ using model::Vec3;
 
 namespace {
 
+/// The model's distance tolerance grows with its extent (1e-4 of its bounding box): one block
+/// kilometres away, a survey marker in a georeferenced export, made it 0.4 m and silenced the
+/// checks of every block's warped faces, overlaps and CAD centroids. The checks of a block use
+/// at most this fraction of its own size (of the median block's, between blocks), which leaves
+/// models up to about a hundred blocks across as they were.
+constexpr double kBlockToleranceCap = 0.01;
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -72,7 +79,7 @@ struct BlockChecks {
   std::string pointer;          // "/blocks/i"
   std::string name;             // "block 'id'"
   double diagonal;              // m, of the block's bounding box
-  double model_tolerance;       // m
+  double model_tolerance;       // m: the model's distance tolerance, capped at this block's scale
   std::vector<InputIssue>& errors;
   std::vector<model::Warning>& warnings;
 };
@@ -178,9 +185,11 @@ void prepare_block(model::Block& block, std::size_t index, double model_toleranc
     lo = lo.cwiseMin(v);
     hi = hi.cwiseMax(v);
   }
-  const BlockChecks checks{index,           "/blocks/" + std::to_string(index), "block '" + block.id + "'",
-                           (hi - lo).norm(), model_tolerance,                   errors,
-                           warnings};
+  const double diagonal = (hi - lo).norm();
+  const BlockChecks checks{index,    "/blocks/" + std::to_string(index),
+                           "block '" + block.id + "'",
+                           diagonal, std::min(model_tolerance, kBlockToleranceCap * diagonal),
+                           errors,   warnings};
   if (checks.diagonal == 0.0) {
     errors.push_back({checks.pointer + "/vertices", checks.name + " is degenerate: all its vertices coincide"});
     return;
@@ -416,6 +425,23 @@ void warn_suspicious_units(model::Model& m) {
   }
 }
 
+/// The model's distance tolerance for checks between blocks: at most kBlockToleranceCap of the
+/// median block's size (the median: a ground slab or a marker must not set it).
+double block_scale_tolerance(const model::Model& m) {
+  const double tolerance = m.distance_tolerance();
+  if (m.blocks.empty()) return tolerance;
+  std::vector<double> sizes;
+  sizes.reserve(m.blocks.size());
+  for (const model::Block& block : m.blocks) {
+    Vec3 lo = block.vertices[0], hi = block.vertices[0];
+    for (const Vec3& v : block.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    sizes.push_back((hi - lo).norm());
+  }
+  const auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
+  std::nth_element(sizes.begin(), middle, sizes.end());
+  return std::min(tolerance, kBlockToleranceCap * *middle);
+}
+
 }  // namespace
 
 PrepareReport prepare_model(model::Model& m) {
@@ -430,7 +456,7 @@ PrepareReport prepare_model(model::Model& m) {
     prepare_block(m.blocks[i], i, tolerance, m.units, errors, m.warnings, warped);
   }
   if (!errors.empty()) throw model::ModelError(errors);
-  check_overlaps(m, tolerance, errors, m.warnings);
+  check_overlaps(m, block_scale_tolerance(m), errors, m.warnings);
   if (!errors.empty()) throw model::ModelError(errors);
   warn_warped_faces(warped, m);
   place_loads_without_point(m);
