@@ -46,12 +46,7 @@ Scales choose_scales(const model::Model& m) {
   int count = 0, weighted = 0;
   for (const model::Block& block : m.blocks) {
     if (block.is_support()) continue;
-    Vec3 lo = block.vertices[0], hi = block.vertices[0];
-    for (const Vec3& v : block.vertices) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-    size_sum += (hi - lo).norm();
+    size_sum += model::bounding_box_of(block.vertices).diagonal();
     ++count;
     if (block.weight() > 0.0) {
       weight_sum += block.weight();

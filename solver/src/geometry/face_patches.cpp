@@ -48,14 +48,10 @@ struct BlockFaces {
 };
 
 BlockFaces welded_faces(const model::Block& block) {
-  Vec3 lo = block.vertices[0], hi = block.vertices[0];
-  for (const Vec3& v : block.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
   // The closure check's welding (polyhedron.hpp): its own pairwise rule, smallest index of the
   // pair, split a corner whose copies were rounded apart and sorted out of index order.
-  const std::vector<int> rep = merge_close_vertices(block.vertices, kVertexWeldRelative * (hi - lo).norm());
+  const double diagonal = model::bounding_box_of(block.vertices).diagonal();
+  const std::vector<int> rep = merge_close_vertices(block.vertices, kVertexWeldRelative * diagonal);
   BlockFaces out;
   const int num_faces = static_cast<int>(block.faces.size());
   out.faces.resize(num_faces);

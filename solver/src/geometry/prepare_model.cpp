@@ -180,12 +180,7 @@ void compare_with_cad(const model::Block& block, const BlockChecks& c, const mod
 void prepare_block(model::Block& block, std::size_t index, double model_tolerance, const model::Units& units,
                    std::vector<InputIssue>& errors, std::vector<model::Warning>& warnings,
                    std::vector<WarpedFace>& warped) {
-  Vec3 lo = block.vertices[0], hi = block.vertices[0];
-  for (const Vec3& v : block.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  const double diagonal = (hi - lo).norm();
+  const double diagonal = model::bounding_box_of(block.vertices).diagonal();
   const BlockChecks checks{index,    "/blocks/" + std::to_string(index),
                            "block '" + block.id + "'",
                            diagonal, std::min(model_tolerance, kBlockToleranceCap * diagonal),
@@ -432,11 +427,7 @@ double block_scale_tolerance(const model::Model& m) {
   if (m.blocks.empty()) return tolerance;
   std::vector<double> sizes;
   sizes.reserve(m.blocks.size());
-  for (const model::Block& block : m.blocks) {
-    Vec3 lo = block.vertices[0], hi = block.vertices[0];
-    for (const Vec3& v : block.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-    sizes.push_back((hi - lo).norm());
-  }
+  for (const model::Block& block : m.blocks) sizes.push_back(model::bounding_box_of(block.vertices).diagonal());
   const auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
   std::nth_element(sizes.begin(), middle, sizes.end());
   return std::min(tolerance, kBlockToleranceCap * *middle);

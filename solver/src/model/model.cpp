@@ -58,6 +58,17 @@ const char* to_string(Formulation value) {
   return "?";
 }
 
+BoundingBox bounding_box_of(const std::vector<Vec3>& points) {
+  BoundingBox box;
+  if (points.empty()) return box;
+  box.min = box.max = points[0];
+  for (const Vec3& v : points) {
+    box.min = box.min.cwiseMin(v);
+    box.max = box.max.cwiseMax(v);
+  }
+  return box;
+}
+
 BoundingBox Model::bounding_box() const {
   BoundingBox box;
   const double inf = std::numeric_limits<double>::infinity();

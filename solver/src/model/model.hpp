@@ -202,6 +202,9 @@ struct BoundingBox {
   double diagonal() const { return (max - min).norm(); }
 };
 
+/// The axis-aligned box of `points` (zero at the origin when there are none).
+BoundingBox bounding_box_of(const std::vector<Vec3>& points);
+
 /// Something the user should know that did not stop the run. `pointer` is a JSON pointer
 /// into the model file when the warning is about a place in it.
 struct Warning {
