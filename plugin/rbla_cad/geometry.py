@@ -71,19 +71,22 @@ def polygon_centroid(points):
 def volume_centroid(vertices, faces):
     """Signed volume and centroid of a closed polyhedron by the divergence theorem.
 
-    Faces are fanned into triangles from their first vertex; each triangle and a reference
-    point (the first vertex) form a tetrahedron. Positive volume means the faces are oriented
-    outward (counter-clockwise seen from outside). Returns (volume, (x, y, z)); the centroid is
-    the first vertex when the volume is zero.
+    Faces are fanned into triangles from the mean of their corners (so that a warped face gives
+    the same surface whichever corner its list starts at, as the solver's
+    geometry::mass_properties does); each triangle and a reference point (the first vertex) form
+    a tetrahedron. Positive volume means the faces are oriented outward (counter-clockwise seen
+    from outside). Returns (volume, (x, y, z)); the centroid is the first vertex when the volume
+    is zero.
     """
     o = vertices[0]
     vol6 = 0.0
     s = [0.0, 0.0, 0.0]
     for f in faces:
-        a = sub(vertices[f[0]], o)
-        for k in range(1, len(f) - 1):
+        n = len(f)
+        a = sub([sum(vertices[i][k] for i in f) / n for k in range(3)], o)
+        for k in range(n):
             b = sub(vertices[f[k]], o)
-            c = sub(vertices[f[k + 1]], o)
+            c = sub(vertices[f[(k + 1) % n]], o)
             v = dot(a, cross(b, c))
             vol6 += v
             for i in range(3):

@@ -70,6 +70,27 @@ TEST(Polyhedron, BoxInMillimetresAndMetresAgree) {
   EXPECT_NEAR((m.centroid - Vec3(0.32, 0.39, 0.55)).norm(), 0.0, 1e-14);
 }
 
+// A face's list may start at any corner. With warped faces, a fan from the first corner gave
+// another surface for each start: rolling the lists of a generated vault's block moved its
+// centroid by 12.5 mm and its volume by 1.3 %. The fan from the corners' mean does not depend on it.
+TEST(Polyhedron, WarpedFacesGiveTheSameMassWhicheverCornerTheirListsStartAt) {
+  Mesh warped = box(Vec3(0, 0, 0), Vec3(1, 0.5, 0.3));
+  warped.vertices[6] += Vec3(0.05, -0.03, 0.08);  // one top corner out of its three faces' planes
+  const auto reference = mass_properties(warped.vertices, warped.faces);
+  for (std::size_t roll = 1; roll < 4; ++roll) {
+    Mesh rolled = warped;
+    for (auto& face : rolled.faces) std::rotate(face.begin(), face.begin() + static_cast<std::ptrdiff_t>(roll % face.size()), face.end());
+    const auto m = mass_properties(rolled.vertices, rolled.faces);
+    EXPECT_NEAR(m.volume, reference.volume, 1e-14) << roll;
+    EXPECT_NEAR((m.centroid - reference.centroid).norm(), 0.0, 1e-14) << roll;
+    for (std::size_t f = 0; f < rolled.faces.size(); ++f) {
+      const auto a = rbla::geometry::face_geometry(warped.vertices, warped.faces[f]);
+      const auto b = rbla::geometry::face_geometry(rolled.vertices, rolled.faces[f]);
+      EXPECT_NEAR((a.centroid - b.centroid).norm(), 0.0, 1e-14) << roll << " face " << f;
+    }
+  }
+}
+
 TEST(Polyhedron, TetrahedronClosedForm) {
   // V = |det| / 6 and the centroid is the vertex average.
   std::vector<Vec3> v = {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}, {0, 0, 4}};

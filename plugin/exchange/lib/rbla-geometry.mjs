@@ -84,7 +84,9 @@ export function triangulatePolygon(pts) {
   return tris;
 }
 
-/** Volume and centroid of a closed polyhedron (faces counter-clockwise seen from outside). */
+/** Volume and centroid of a closed polyhedron (faces counter-clockwise seen from outside). Each face
+ *  is fanned from the mean of its corners, as the solver's geometry::mass_properties and the Python
+ *  core do: a warped face then gives the same surface whichever corner its list starts at. */
 export function polyhedronMassProps(vertices, faces) {
   // reference point: vertex average (reduces round-off)
   const ref = [0, 0, 0];
@@ -94,8 +96,9 @@ export function polyhedronMassProps(vertices, faces) {
   const c = [0, 0, 0];
   for (const f of faces) {
     const pts = f.map((i) => sub(vertices[i], ref));
-    for (const [a, b, d] of triangulatePolygon(pts)) {
-      const A = pts[a], B = pts[b], D = pts[d];
+    const A = [0, 1, 2].map((k) => pts.reduce((s, p) => s + p[k], 0) / pts.length);
+    for (let i = 0; i < pts.length; i++) {
+      const B = pts[i], D = pts[(i + 1) % pts.length];
       const v6 = dot(A, cross(B, D));
       vol += v6;
       c[0] += v6 * (A[0] + B[0] + D[0]);

@@ -12,14 +12,22 @@
 
 namespace rbla::geometry {
 
+namespace {
+Vec3 corner_mean(const std::vector<Vec3>& vertices, const std::vector<int>& face) {
+  Vec3 sum = Vec3::Zero();
+  for (int index : face) sum += vertices[index];
+  return sum / static_cast<double>(face.size());
+}
+}  // namespace
+
 FaceGeometry face_geometry(const std::vector<Vec3>& vertices, const std::vector<int>& face) {
   FaceGeometry result;
   const std::size_t n = face.size();
   if (n < 3) return result;
-  const Vec3& origin = vertices[face[0]];
+  const Vec3 origin = corner_mean(vertices, face);
   Vec3 area2 = Vec3::Zero();
-  for (std::size_t i = 1; i + 1 < n; ++i) {
-    area2 += (vertices[face[i]] - origin).cross(vertices[face[i + 1]] - origin);
+  for (std::size_t i = 0; i < n; ++i) {
+    area2 += (vertices[face[i]] - origin).cross(vertices[face[(i + 1) % n]] - origin);
   }
   result.area_vector = 0.5 * area2;
   result.area = result.area_vector.norm();
@@ -27,9 +35,9 @@ FaceGeometry face_geometry(const std::vector<Vec3>& vertices, const std::vector<
 
   Vec3 weighted = Vec3::Zero();
   double total = 0.0;
-  for (std::size_t i = 1; i + 1 < n; ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     const Vec3& b = vertices[face[i]];
-    const Vec3& c = vertices[face[i + 1]];
+    const Vec3& c = vertices[face[(i + 1) % n]];
     const double signed_area = 0.5 * (b - origin).cross(c - origin).dot(result.normal);
     weighted += signed_area * (origin + b + c) / 3.0;
     total += signed_area;
@@ -60,11 +68,12 @@ MassProperties mass_properties(const std::vector<Vec3>& vertices, const FaceList
   double volume6 = 0.0;
   Vec3 moment24 = Vec3::Zero();  // sum of 6 V_t * 4 * (centroid_t - r)
   for (const auto& face : faces) {
-    if (face.size() < 3) continue;
-    const Vec3 a = vertices[face[0]] - reference;
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+    const std::size_t n = face.size();
+    if (n < 3) continue;
+    const Vec3 a = corner_mean(vertices, face) - reference;
+    for (std::size_t i = 0; i < n; ++i) {
       const Vec3 b = vertices[face[i]] - reference;
-      const Vec3 c = vertices[face[i + 1]] - reference;
+      const Vec3 c = vertices[face[(i + 1) % n]] - reference;
       const double v6 = a.dot(b.cross(c));
       volume6 += v6;
       moment24 += v6 * (a + b + c);

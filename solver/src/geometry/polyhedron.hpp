@@ -24,7 +24,9 @@ struct FaceGeometry {
 /// Newell's method: A = 1/2 sum_i (v_i - o) x (v_{i+1} - o), exact for any planar simple polygon,
 /// convex or not (Newell 1972; Sutherland, Sproull & Schumacker 1974). The centroid is the
 /// area-weighted sum of the fan triangles' centroids, with signed areas along the normal, so it too
-/// is exact for non-convex faces.
+/// is exact for non-convex faces. The fan is from the mean of the corners (o): for a warped face it
+/// is then the same whichever corner the list starts at (from the first corner, rolling the list
+/// of a warped vault face moved its block's centroid by 12.5 mm).
 FaceGeometry face_geometry(const std::vector<Vec3>& vertices, const std::vector<int>& face);
 
 struct MassProperties {
@@ -34,7 +36,8 @@ struct MassProperties {
 };
 
 /// Volume and centroid by the divergence theorem: the closed surface is split into signed
-/// tetrahedra (r, a, b, c) over a fan triangulation of each face, with r a reference point inside
+/// tetrahedra (r, a, b, c) over a fan triangulation of each face from the mean of its corners (the
+/// same surface whichever corner a warped face's list starts at), with r a reference point inside
 /// the block's bounding box (which keeps round-off small for models far from the origin):
 ///   V = sum 1/6 (a-r).((b-r) x (c-r)),   g = r + sum V_t (a+b+c-3r)/4 / V.
 /// Exact for closed, consistently oriented surfaces with planar faces, convex or not
