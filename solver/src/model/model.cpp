@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <limits>
 #include <sstream>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 namespace rbla::model {
 
@@ -90,9 +93,60 @@ std::size_t Model::num_contact_points() const {
   return count;
 }
 
+namespace {
+
+/// The range along one axis of the largest group of blocks: the blocks' intervals [lo, hi],
+/// sorted by lo, form one group while each begins within `gap` of the furthest end so far; the
+/// group with the most blocks wins (the first of equals).
+std::pair<double, double> main_group_range(std::vector<std::pair<double, double>>& intervals, double gap) {
+  std::sort(intervals.begin(), intervals.end());
+  std::pair<double, double> best = intervals.front(), group = intervals.front();
+  std::size_t best_count = 0, count = 0;
+  for (const auto& [lo, hi] : intervals) {
+    if (count > 0 && lo > group.second + gap) {
+      if (count > best_count) std::tie(best, best_count) = std::make_pair(group, count);
+      group = {lo, hi};
+      count = 0;
+    }
+    group.second = std::max(group.second, hi);
+    ++count;
+  }
+  if (count > best_count) best = group;
+  return best;
+}
+
+}  // namespace
+
+/// Per axis, the range of the largest group of blocks whose intervals along the axis are
+/// separated by no gap wider than kStructureGapBlocks median block sizes. A connected structure
+/// has no such gap along any axis, so its box is its bounding box; a block kilometres away (a
+/// survey marker of a georeferenced export) falls outside, and no longer makes every default
+/// tolerance, derived from the diagonal, a thousand times that of the structure.
+BoundingBox Model::structure_box() const {
+  if (blocks.size() < 2) return bounding_box();
+  std::vector<BoundingBox> boxes;
+  std::vector<double> sizes;
+  boxes.reserve(blocks.size());
+  sizes.reserve(blocks.size());
+  for (const Block& block : blocks) {
+    boxes.push_back(bounding_box_of(block.vertices));
+    sizes.push_back(boxes.back().diagonal());
+  }
+  const auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
+  std::nth_element(sizes.begin(), middle, sizes.end());
+  const double gap = kStructureGapBlocks * *middle;
+  BoundingBox box;
+  std::vector<std::pair<double, double>> intervals(boxes.size());
+  for (int axis = 0; axis < 3; ++axis) {
+    for (std::size_t i = 0; i < boxes.size(); ++i) intervals[i] = {boxes[i].min[axis], boxes[i].max[axis]};
+    std::tie(box.min[axis], box.max[axis]) = main_group_range(intervals, gap);
+  }
+  return box;
+}
+
 double Model::distance_tolerance() const {
   if (detection.distance_tolerance) return *detection.distance_tolerance;
-  return detection.relative_tolerance.value_or(kModelRelativeTolerance) * std::max(bounding_box().diagonal(), 1e-300);
+  return detection.relative_tolerance.value_or(kModelRelativeTolerance) * std::max(structure_box().diagonal(), 1e-300);
 }
 
 std::pair<Vec3, Vec3> Model::horizontal_axes() const {

@@ -143,9 +143,15 @@ struct DetectionSettings {
 };
 
 /// The geometric tolerance of the model (m) where no joint is involved (vertex merging, planarity
-/// of given interfaces, extrusion checks): this fraction of the bounding-box diagonal unless the
-/// model gives `detection.distance_tolerance` or `detection.relative_tolerance`.
+/// of given interfaces, extrusion checks): this fraction of the structure's diagonal
+/// (Model::structure_box) unless the model gives `detection.distance_tolerance` or
+/// `detection.relative_tolerance`.
 inline constexpr double kModelRelativeTolerance = 1e-4;
+
+/// A gap wider than this many median block sizes along an axis separates blocks from the
+/// structure when its extent is measured (Model::structure_box). Real structures have no such
+/// gap between their parts; a survey marker or a terrain tile placed kilometres away does.
+inline constexpr double kStructureGapBlocks = 10.0;
 
 /// A pair of faces of different blocks that interface detection looked at and rejected: close and
 /// nearly opposite, but outside its tolerances. Kept so that a verdict can say which joints were
@@ -241,8 +247,14 @@ struct Model {
   DetectionSummary detection_summary;
 
   BoundingBox bounding_box() const;
+  /// The box of the structure itself: the bounding box without the blocks that a wide gap along
+  /// some axis separates from most of the others (structure_box in model.cpp). The default
+  /// tolerances are relative to it.
+  BoundingBox structure_box() const;
   std::size_t num_contact_points() const;
-  /// The distance tolerance in metres actually used for geometry checks and detection.
+  /// The distance tolerance in metres actually used for geometry checks and detection: the
+  /// given one, or a fraction (relative_tolerance, else kModelRelativeTolerance) of the diagonal
+  /// of structure_box().
   double distance_tolerance() const;
   /// The axes angles in the horizontal plane are measured from and towards: x (y when gravity
   /// is along x) projected on the plane normal to gravity, and up cross that, so that angles
