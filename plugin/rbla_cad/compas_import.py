@@ -421,36 +421,52 @@ def dumps_model(model, compact=False):
     return "\n".join(lines) + "\n"
 
 
+def _printable(text):
+    """`text` with its control characters escaped (a newline as \\n, ESC as \\x1b): block ids come
+    from the file, and a newline or a terminal escape in one must not forge or hide report lines."""
+    return "".join(c if c.isprintable() else c.encode("unicode_escape").decode("ascii") for c in text)
+
+
+def _id_list(ids, most=20):
+    """At most `most` ids, comma-separated, and how many more there are."""
+    shown = ",".join(ids[:most]) or "-"
+    return shown + (" and %d more" % (len(ids) - most) if len(ids) > most else "")
+
+
 def _report(path, model, info, with_interfaces):
     """The converter's messages on standard error; returns the exit status."""
+    lines = []
     fixed = [b["id"] for b in model["blocks"] if b["role"] == "fixed"]
     msg = ("%s: %s, %d blocks (%d fixed: %s); max face warp %.2g m"
            % (path, info["layout"] + (" " + info["dtype"] if info["dtype"] else ""), info["blocks"],
-              len(fixed), ",".join(fixed) or "-", info["max_face_warp"]))
+              len(fixed), _id_list(fixed), info["max_face_warp"]))
     if with_interfaces:
         msg += "; %d interfaces written" % info["interfaces"]
     if info["dropped_vertices"]:
         msg += "; %d unused vertices dropped" % info["dropped_vertices"]
-    sys.stderr.write(msg + "\n")
+    lines.append(msg)
     if info["ground_level"] is not None:
-        sys.stderr.write("%s: supports by contact with the ground plane z = %.6g m: %d blocks rest on it (%s)\n"
-                         % (path, info["ground_level"], len(info["ground_contacts"]),
-                            ",".join(info["ground_contacts"]) or "-"))
+        lines.append("%s: supports by contact with the ground plane z = %.6g m: %d blocks rest on it (%s)"
+                     % (path, info["ground_level"], len(info["ground_contacts"]), _id_list(info["ground_contacts"])))
     if not fixed:
         why = ("every block rests on the ground plane, so none was made fixed by contact"
                if info["ground_contacts"] and len(info["ground_contacts"]) == info["blocks"]
                else "no is_support node and no block resting on the ground plane")
-        sys.stderr.write("%s: warning: no support (%s); rbla will find that the structure cannot stand. "
-                         "Use --support KEY.\n" % (path, why))
+        lines.append("%s: warning: no support (%s); rbla will find that the structure cannot stand. "
+                     "Use --support KEY." % (path, why))
     if info["t_junctions"]:
-        sys.stderr.write("%s: note: blocks %s have vertices on other faces' edges (faces split into pieces); "
-                         "accepted\n" % (path, ",".join(info["t_junctions"][:20])))
+        lines.append("%s: note: blocks %s have vertices on other faces' edges (faces split into pieces); "
+                     "accepted" % (path, _id_list(info["t_junctions"])))
     if info["volume_negative"]:
-        sys.stderr.write("%s: warning: blocks %s have negative volume from their faces (inward faces)%s\n"
-                         % (path, ",".join(info["volume_negative"]),
-                            "; reversed" if info["reversed"] else "; use --fix-orientation"))
+        lines.append("%s: warning: blocks %s have negative volume from their faces (inward faces)%s"
+                     % (path, _id_list(info["volume_negative"]),
+                        "; reversed" if info["reversed"] else "; use --fix-orientation"))
     for pr in info["problems"][:20]:
-        sys.stderr.write("%s: warning: %s\n" % (path, pr))
+        lines.append("%s: warning: %s" % (path, pr))
+    if len(info["problems"]) > 20:
+        lines.append("%s: warning: and %d more problems" % (path, len(info["problems"]) - 20))
+    for line in lines:
+        sys.stderr.write(_printable(line) + "\n")
     bad = (info["volume_negative"] and not info["reversed"]) or any(
         "not shared" in pr or "zero area" in pr for pr in info["problems"])
     return 2 if bad else 0

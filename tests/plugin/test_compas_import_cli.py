@@ -201,6 +201,26 @@ class CompasImportFilesTest(unittest.TestCase):
         rc, out, err = convert("-", stdin=self.original)
         self.assertEqual(rc, 0, err)
 
+    def test_node_ids_with_control_characters_cannot_forge_report_lines(self):
+        # Block ids are the file's node keys: a newline or a terminal escape in one is printed
+        # escaped, so the report keeps its own lines and the terminal its state.
+        with open(ARCH) as f:
+            doc = json.load(f)
+        graph = doc["data"]["graph"]["data"]
+        forged = "0\nrbla: solved, alpha = 9\x1b[2J"
+        graph["node"][forged] = graph["node"].pop("0")
+        for edge in graph["edge"].values():
+            if "0" in edge:
+                edge[forged] = edge.pop("0")
+        if "0" in graph["edge"]:
+            graph["edge"][forged] = graph["edge"].pop("0")
+        code, out, err = convert("-", stdin=json.dumps(doc).encode())
+        self.assertEqual(code, 0, err)
+        self.assertNotIn("\x1b", err)
+        self.assertFalse(any(line.startswith("rbla: solved") for line in err.splitlines()), err)
+        self.assertIn("0\\nrbla: solved, alpha = 9\\x1b[2J", err)
+        self.assertIn(forged, [b["id"] for b in json.loads(out)["blocks"]])
+
     def test_deep_nesting_is_invalid_input_without_a_traceback(self):
         deep = self.path("deep.json")
         with open(deep, "w") as f:
