@@ -146,6 +146,16 @@ std::string refused_option_value(const CLI::App& command) {
   return "";
 }
 
+void add_detail_option(CLI::App* command, io::ResultDetail& detail) {
+  command
+      ->add_option_function<std::string>(
+          "--detail", [&detail](const std::string& name) { io::parse_detail(name, detail); },
+          "How much of the mechanism the result holds: points (default: every interface with its contact points), "
+          "interfaces (without their contact points), blocks (block motions and the cracked interfaces' ids)")
+      ->check(CLI::IsMember({"points", "interfaces", "blocks"}))
+      ->default_str("points");
+}
+
 int write_analysis_outputs(const CommonOptions& options, const model::Model& model,
                            const analysis::AnalysisResult& result, model::StageTimings timings,
                            Clock::time_point start, const ExtraOutput& extra) {
@@ -163,7 +173,7 @@ int write_analysis_outputs(const CommonOptions& options, const model::Model& mod
   if (options.output_path.empty()) return kSuccess;
   timings.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
   timings.total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  nlohmann::json json = io::analysis_result_json(model, result, timings, options.model_path);
+  nlohmann::json json = io::analysis_result_json(model, result, timings, options.model_path, options.detail);
   if (!extra.section.empty()) json[extra.section] = extra.section_json;
   const int code = write_output(options.output_path, json.dump(1) + "\n");
   if (code == kSuccess && options.output_path != "-") progress(options, "wrote " + options.output_path);

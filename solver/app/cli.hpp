@@ -14,6 +14,7 @@
 #include "io/file_error.hpp"
 #include "io/input_limits.hpp"
 #include "io/load_model.hpp"
+#include "io/result_writer.hpp"
 #include "model/errors.hpp"
 #include "model/stage_timings.hpp"
 
@@ -58,6 +59,7 @@ struct CommonOptions {
   bool quiet = false;
   bool verbose = false;
   int threads = 2;
+  io::ResultDetail detail = io::ResultDetail::Points;
   io::InputLimits limits;
 };
 
@@ -83,6 +85,8 @@ bool check_paths(const CommonOptions& options,
 int exit_code_of(analysis::Verdict verdict);
 /// --max-input-bytes, --max-depth, ... (io/input_limits.hpp): how much input a command accepts.
 void add_input_limits(CLI::App* command, io::InputLimits& limits);
+/// --detail points|interfaces|blocks: how much of the mechanism the result JSON holds.
+void add_detail_option(CLI::App* command, io::ResultDetail& detail);
 
 /// What CLI11's own checks let through, refused with a message naming the option: an empty value
 /// (`-o ''` would mean "no output" and be silently ignored) and NaN (comparisons with it are

@@ -200,6 +200,7 @@ Command add_worst_direction(CLI::App& app, CommonOptions& options) {
   worst->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
   worst->add_flag("-v,--verbose", options.verbose, "Interior-point iteration logs and every warning");
   worst->add_option("--threads", options.threads, "Threads per conic solve, 1 or 2")->check(CLI::Range(1, 2));
+  add_detail_option(worst, options.detail);
   add_input_limits(worst, options.limits);
 
   return {worst, [&options, settings] { return run_worst_direction(options, *settings); }};
@@ -234,6 +235,7 @@ Command add_worst_settlement(CLI::App& app, CommonOptions& options) {
   worst->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
   worst->add_flag("-v,--verbose", options.verbose, "Interior-point iteration logs and every warning");
   worst->add_option("--threads", options.threads, "Threads per conic solve, 1 or 2")->check(CLI::Range(1, 2));
+  add_detail_option(worst, options.detail);
   add_input_limits(worst, options.limits);
 
   return {worst, [&options, settings] { return run_worst_settlement(options, *settings); }};
@@ -264,6 +266,7 @@ Command add_critical_friction(CLI::App& app, CommonOptions& options) {
   friction->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
   friction->add_flag("-v,--verbose", options.verbose, "Interior-point iteration logs and every warning");
   friction->add_option("--threads", options.threads, "Threads per conic solve, 1 or 2")->check(CLI::Range(1, 2));
+  add_detail_option(friction, options.detail);
   add_input_limits(friction, options.limits);
 
   return {friction, [&options, search] { return run_critical_friction(options, *search); }};

@@ -105,6 +105,7 @@ Command add_solve(CLI::App& app, CommonOptions& options) {
   solve->add_option("--threads", options.threads,
                     "Threads per conic solve: 2 (default) splits large problems over two cores, 1 keeps to one")
       ->check(CLI::Range(1, 2));
+  add_detail_option(solve, options.detail);
   add_input_limits(solve, options.limits);
 
   return {solve, [&options] { return run_solve(options); }};

@@ -83,7 +83,7 @@ int solve_sweep_points(const CommonOptions& options, const SweepOptions& sweep, 
     const analysis::AnalysisResult result = analysis::analyse(at, analysis_options);
     model::StageTimings timings;
     timings.total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    nlohmann::json json = io::analysis_result_json(at, result, timings, options.model_path);
+    nlohmann::json json = io::analysis_result_json(at, result, timings, options.model_path, options.detail);
     json["sweep_point"] = io::sweep_point_json(axes, point);
     const std::string path = (std::filesystem::path(sweep.out_dir) / io::point_file_name(point.index)).string();
     const int code = write_output(path, json.dump(1) + "\n");
@@ -276,6 +276,7 @@ Command add_sweep(CLI::App& app, CommonOptions& options, std::vector<std::string
                     "Write a Slurm job-array script of --tasks tasks for this sweep instead of running it");
   command->add_flag("-q,--quiet", options.quiet, "No progress or warnings on standard error");
   command->add_option("--threads", options.threads, "Threads per conic solve, 1 or 2")->check(CLI::Range(1, 2));
+  add_detail_option(command, options.detail);
   add_input_limits(command, options.limits);
 
   return {command, [&options, sweep] { return run_sweep(options, *sweep); }};

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "io/model_reader.hpp"
+#include "io/schema_validation.hpp"
 #include "support/cli_runner.hpp"
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -168,6 +170,37 @@ TEST_F(Cli, SolvePrintsTheVerdictAndWritesResultAndPictures) {
   EXPECT_TRUE(fs::exists(path("result.json")));
   EXPECT_GT(fs::file_size(path("pictures/mechanism.svg")), 0u);
   EXPECT_GT(fs::file_size(path("pictures/convergence.svg")), 0u);
+}
+
+// --detail: the same analysis written with every interface's contact points, without them, or
+// with block motions only. Each file validates against the result schema, says what it holds, and
+// carries the same value, motions and cracked interfaces; only the interfaces' detail differs.
+TEST_F(Cli, DetailLeavesOutContactPointsOrInterfacesAndNothingElse) {
+  const std::string model = std::string(RBLA_SOURCE_DIR) + "/samples/wall_opening.json";
+  std::map<std::string, nlohmann::json> results;
+  for (const char* detail : {"points", "interfaces", "blocks"}) {
+    const auto r = run("solve -q " + model + " -o " + path(detail) + " --detail " + detail);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    results[detail] = nlohmann::json::parse(read(detail));
+    const auto issues = rbla::io::validate_against_schema(results[detail], rbla::io::SchemaKind::Result);
+    EXPECT_TRUE(issues.empty()) << detail << ": " << issues.front().pointer << ": " << issues.front().message;
+    EXPECT_EQ(results[detail]["detail"], detail);
+  }
+  const nlohmann::json& full = results["points"];
+  ASSERT_TRUE(full.contains("interfaces"));
+  EXPECT_TRUE(full["interfaces"][0].contains("points"));
+  EXPECT_FALSE(results["interfaces"]["interfaces"][0].contains("points"));
+  EXPECT_EQ(results["interfaces"]["interfaces"].size(), full["interfaces"].size());
+  EXPECT_FALSE(results["blocks"].contains("interfaces"));
+  for (const auto& [detail, result] : results) {
+    EXPECT_EQ(result["load_multiplier"], full["load_multiplier"]) << detail;
+    EXPECT_EQ(result["blocks"], full["blocks"]) << detail;
+    EXPECT_EQ(result["cracked_interfaces"], full["cracked_interfaces"]) << detail;
+  }
+  const auto bad = run("solve -q " + model + " -o " + path("bad") + " --detail forces");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("--detail"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("bad")));
 }
 
 TEST_F(Cli, CannotStandIsAnAnswerNotAnError) {

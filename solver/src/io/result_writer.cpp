@@ -86,7 +86,7 @@ json warning_summary_json(const std::vector<model::Warning>& warnings) {
 }
 
 json model_only_result(const model::Model& model, const model::StageTimings& timings, const std::string& source) {
-  json result{{"schema_version", "1.8.0"},
+  json result{{"schema_version", "1.9.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
               {"verdict", "Model read and checked; no analysis was run."},
@@ -304,7 +304,7 @@ json block_motions_json(const model::Model& model, const analysis::AnalysisResul
 /// One interface of the `interfaces` section, its contact points with their states and, when the
 /// forces are known (a collapse), their forces (model force units).
 json interface_json(const model::Model& model, const model::ContactInterface& c, const analysis::InterfaceResult& r,
-                    bool forces_known) {
+                    bool forces_known, bool with_points) {
   const double l = model.units.length_to_m;
   const double f = model.units.force_to_kN;
   json entry{{"id", c.id},
@@ -316,6 +316,7 @@ json interface_json(const model::Model& model, const model::ContactInterface& c,
              {"cracked", r.cracked}};
   if (!c.label.empty()) entry["label"] = c.label;
   if (forces_known) entry["resultant"] = {{"normal_force", r.normal_force / f}, {"shear_force", r.shear_force / f}};
+  if (!with_points) return entry;
   json points = json::array();
   for (const auto& p : r.points) {
     json point{{"position", {p.position.x() / l, p.position.y() / l, p.position.z() / l}},
@@ -331,8 +332,10 @@ json interface_json(const model::Model& model, const model::ContactInterface& c,
   return entry;
 }
 
-/// The mechanism's sections: `mechanism`, `blocks`, `interfaces` and `cracked_interfaces`.
-void add_mechanism(const model::Model& model, const analysis::AnalysisResult& result, json& out) {
+/// The mechanism's sections: `mechanism`, `blocks`, `interfaces` (unless `detail` is Blocks) and
+/// `cracked_interfaces`.
+void add_mechanism(const model::Model& model, const analysis::AnalysisResult& result, ResultDetail detail,
+                   json& out) {
   out["mechanism"] = mechanism_json(model, result);
   out["blocks"] = block_motions_json(model, result);
   json interfaces = json::array();
@@ -341,10 +344,12 @@ void add_mechanism(const model::Model& model, const analysis::AnalysisResult& re
   for (std::size_t i = 0; i < model.interfaces.size(); ++i) {
     const model::ContactInterface& c = model.interfaces[i];
     const analysis::InterfaceResult& r = result.mechanism.interfaces[i];
-    interfaces.push_back(interface_json(model, c, r, forces_known));
+    if (detail != ResultDetail::Blocks) {
+      interfaces.push_back(interface_json(model, c, r, forces_known, detail == ResultDetail::Points));
+    }
     if (r.cracked) cracked.push_back(c.id);
   }
-  out["interfaces"] = interfaces;
+  if (detail != ResultDetail::Blocks) out["interfaces"] = interfaces;
   out["cracked_interfaces"] = cracked;
 }
 
@@ -375,10 +380,30 @@ void add_collapse_checks(const model::Model& model, const analysis::AnalysisResu
 
 }  // namespace
 
+const char* to_string(ResultDetail detail) {
+  switch (detail) {
+    case ResultDetail::Points: return "points";
+    case ResultDetail::Interfaces: return "interfaces";
+    case ResultDetail::Blocks: return "blocks";
+  }
+  return "?";
+}
+
+bool parse_detail(const std::string& name, ResultDetail& detail) {
+  for (const ResultDetail d : {ResultDetail::Points, ResultDetail::Interfaces, ResultDetail::Blocks}) {
+    if (name == to_string(d)) {
+      detail = d;
+      return true;
+    }
+  }
+  return false;
+}
+
 json analysis_result_json(const model::Model& model, const analysis::AnalysisResult& result,
-                          const model::StageTimings& timings, const std::string& source) {
+                          const model::StageTimings& timings, const std::string& source, ResultDetail detail) {
   using analysis::Verdict;
   json out = model_only_result(model, timings, source);
+  out["detail"] = to_string(detail);
   out["status"] = analysis::to_string(result.verdict);
   out["verdict"] = result.verdict_text;
   out["timings"] = timings_json(timings, result);
@@ -398,7 +423,7 @@ json analysis_result_json(const model::Model& model, const analysis::AnalysisRes
   if (result.minimum_load_multiplier) out["minimum_load_multiplier"] = non_negative(*result.minimum_load_multiplier);
   if (result.base_reaction) out["base_reaction"] = base_reaction_json(model, result);
   const bool has_mechanism = result.verdict == Verdict::Collapse || result.verdict == Verdict::CannotStand;
-  if (has_mechanism && !result.mechanism.blocks.empty()) add_mechanism(model, result, out);
+  if (has_mechanism && !result.mechanism.blocks.empty()) add_mechanism(model, result, detail, out);
   if (result.verdict == Verdict::Collapse) add_collapse_checks(model, result, out);
 
   std::vector<model::Warning> warnings = model.warnings;
