@@ -294,7 +294,8 @@ class Result(object):
     def support_reactions(self):
         """Forces the supports (fixed or moving blocks) exert on the structure, per interface:
         list of dicts {interface, support, block, force (x, y, z), point (centre of
-        pressure)}, in the model's units. Empty when the result has no forces."""
+        pressure)}, in the model's units. Empty when the result has no forces, or no contact
+        points (a result written with --detail interfaces or blocks)."""
         roles = dict((b.id, b.role) for b in self.blocks.values())
         out = []
         for itf in self.interfaces:

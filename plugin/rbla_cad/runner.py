@@ -201,16 +201,18 @@ class Runner(object):
 
     # ------------------------------------------------------------------------------------
     def solve(self, model, result_path=None, svg_dir=None, progress=None, cancel=None,
-              timeout=None, verbose=True, workdir=None, keep_files=False):
+              timeout=None, verbose=True, workdir=None, keep_files=False, detail=None):
         """Solve a model; return a RunOutcome with the parsed Result (see module docs).
 
         result_path: where the result JSON goes (default: a temporary folder, removed after
         reading unless keep_files). svg_dir: also write the SVG pictures there. verbose: ask
         for the interior-point table (iteration events). cancel: a threading.Event or a
-        callable returning True to stop.
+        callable returning True to stop. detail: "points" (the solver's default), "interfaces"
+        (no contact points) or "blocks" (no interfaces section): how much of the mechanism the
+        result holds (``rbla solve --detail``; contact points are most of a large model's result).
         """
         return self._analysis("solve", [], model, result_path, svg_dir, progress, cancel,
-                              timeout, verbose, workdir, keep_files)
+                              timeout, verbose, workdir, keep_files, detail)
 
     def worst_direction(self, model, tolerance=None, max_directions=None, **kwargs):
         """``rbla worst-direction``: the horizontal seismic direction the structure carries
@@ -273,7 +275,10 @@ class Runner(object):
         return self._analysis("critical-friction", extra, model, **_analysis_kwargs(kwargs))
 
     def _analysis(self, command, extra, model, result_path=None, svg_dir=None, progress=None,
-                  cancel=None, timeout=None, verbose=True, workdir=None, keep_files=False):
+                  cancel=None, timeout=None, verbose=True, workdir=None, keep_files=False,
+                  detail=None):
+        if detail is not None and detail not in DETAILS:
+            raise ValueError("detail: %r is not one of %s" % (detail, ", ".join(DETAILS)))
         tmp = tempfile.mkdtemp(prefix="rbla_", dir=workdir)
         try:
             model_path = _model_to_file(model, tmp)
@@ -284,6 +289,8 @@ class Runner(object):
                 args += ["--svg", os.path.abspath(svg_dir)]
             if verbose:
                 args.append("-v")
+            if detail is not None:
+                args += ["--detail", detail]
             # A result already at result_path (an earlier run's) is not this run's answer: read
             # the file only when this run wrote it (the solver renames a new file into place).
             before = _file_identity(out_path)
@@ -434,7 +441,9 @@ class Runner(object):
 
 
 _ANALYSIS_KWARGS = ("result_path", "svg_dir", "progress", "cancel", "timeout", "verbose", "workdir",
-                    "keep_files")
+                    "keep_files", "detail")
+# rbla's --detail levels (solver/src/io/result_writer.hpp, ResultDetail).
+DETAILS = ("points", "interfaces", "blocks")
 
 
 def _analysis_kwargs(kwargs):

@@ -166,6 +166,23 @@ class SolverRunTest(unittest.TestCase):
         self.assertAlmostEqual(reac[0]["force"][0], -18.0, places=4)  # -alpha W
         self.assertAlmostEqual(reac[0]["point"][0], 0.5, places=4)    # at the hinge edge
 
+    def test_detail_leaves_out_contact_points_and_the_reader_copes(self):
+        full = self.runner.solve(_support.sample("block.json")).result
+        for detail in ("interfaces", "blocks"):
+            res = self.runner.solve(_support.sample("block.json"), detail=detail).result
+            self.assertEqual(jsonschema_lite.validate_result(res.data), [])
+            self.assertEqual(res.data["detail"], detail)
+            self.assertEqual(res.load_multiplier, full.load_multiplier)
+            self.assertEqual(res.moving_blocks(), ["block"])
+            self.assertEqual(res.support_reactions(), [])  # no contact points, no force vectors
+            if detail == "interfaces":
+                self.assertEqual(len(res.interfaces), len(full.interfaces))
+                self.assertTrue(all(not i.points for i in res.interfaces))
+            else:
+                self.assertEqual(res.interfaces, [])
+        with self.assertRaises(ValueError):
+            self.runner.solve(_support.sample("block.json"), detail="forces")
+
     def test_worst_direction_and_critical_friction(self):
         # The 1 x 1 x 2 block tips at alpha = 0.5 along its four edge normals; sliding needs mu.
         out = self.runner.worst_direction(_support.sample("block.json"), verbose=False)
