@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <map>
 #include <string>
 
@@ -43,6 +44,20 @@ TEST(StructureBox, AConnectedStructureIsItsBoundingBox) {
   spec.units = 3;
   const rbla::model::Model m = rbla::io::load_model_text(vault_model(spec).dump()).model;
   expect_same_box(m.structure_box(), m.bounding_box());
+}
+
+// Likewise every bundled sample: none has a gap of ten blocks, so none changes its tolerance.
+TEST(StructureBox, EverySampleIsItsBoundingBox) {
+  const std::filesystem::path samples = std::filesystem::path(RBLA_SOURCE_DIR) / "samples";
+  int checked = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(samples)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".json" || name == "expected.json") continue;
+    const rbla::model::Model m = rbla::io::load_model_file(entry.path().string()).model;
+    expect_same_box(m.structure_box(), m.bounding_box());
+    ++checked;
+  }
+  EXPECT_GE(checked, 5);
 }
 
 // A marker kilometres away, along two axes or along one only, leaves the box and the tolerance
