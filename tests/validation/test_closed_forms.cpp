@@ -148,7 +148,8 @@ TEST(ClosedForms, ColumnOfBlocks) {
 // far end x = L and the fixed part's force at its edge x = a:
 //     R = W (x_G - a) / (L - a)       when x_G > a
 // (the mechanism: the block rotates about the support edge x = a and follows the settling
-// support at its far end). When x_G < a the block stands on the fixed part alone: R = 0.
+// support at its far end). When x_G < a the block stands on the fixed part alone: the reaction
+// can fall to 0 with the block in equilibrium, and settling forms no mechanism.
 TEST(ClosedForms, SettlementBaseReaction) {
   const double L = 4.0, h = 1.0, g = 1e-3, gamma = 18.0;
   const double W = gamma * L * 1.0 * h, xG = L / 2;
@@ -167,16 +168,19 @@ TEST(ClosedForms, SettlementBaseReaction) {
                              {"formulation", formulation},
                              {"non_associative", {{"max_iterations", 200}, {"tolerance", 1e-6}}}};
         const auto r = run(model);
+        if (xG < a) {
+          EXPECT_EQ(r.verdict, Verdict::NoMechanism) << "the block stands on the fixed part: " << r.verdict_text;
+          EXPECT_FALSE(r.base_reaction.has_value());
+          continue;
+        }
         EXPECT_EQ(r.verdict, Verdict::Collapse) << r.verdict_text;
         ASSERT_TRUE(r.base_reaction.has_value());
-        if (xG > a) {
+        {
           const double expected = W * (xG - a) / (L - a);
           EXPECT_LT(relative_error(*r.base_reaction, expected), kClosedFormTol)
               << "R " << *r.base_reaction << " expected " << expected;
           EXPECT_TRUE(r.mechanism.blocks.at(2).moving);
           EXPECT_LT(r.work.relative_error, kClosedFormTol) << "kinematic " << r.work.kinematic_value;
-        } else {
-          EXPECT_NEAR(*r.base_reaction, 0.0, kClosedFormTol * W) << "R should vanish: the block stands on the fixed part";
         }
       }
     }
@@ -280,7 +284,9 @@ TEST(ClosedForms, InitialBaseReactionNavier) {
     if (!dead.empty()) model["loads"] = {{"dead", dead}};
     model["analysis"] = {{"type", "settlement"}};
     const auto r = run(model);
-    ASSERT_EQ(r.verdict, Verdict::Collapse) << r.verdict_text;
+    // Where the block can stand on the fixed part alone, settling forms no mechanism; R0 is
+    // reported either way.
+    ASSERT_TRUE(r.verdict == Verdict::Collapse || r.verdict == Verdict::NoMechanism) << r.verdict_text;
     ASSERT_TRUE(r.initial_base_reaction.has_value()) << r.verdict_text;
     // Moments about the y axis through x = 0 (a downward load P at x gives +P x): x_R N = sum.
     const double N = W + c.P, xR = (W * L / 2 + c.P * c.xP + c.My) / N;
@@ -293,7 +299,9 @@ TEST(ClosedForms, InitialBaseReactionNavier) {
     // The loss is measured from the rigid-body state: R at collapse is the smallest admissible
     // reaction, so it never exceeds an admissible initial one (all these states are admissible:
     // one block, no inner joints).
-    EXPECT_LE(*r.base_reaction, *r.initial_base_reaction * (1 + 1e-9));
+    if (r.base_reaction) {
+      EXPECT_LE(*r.base_reaction, *r.initial_base_reaction * (1 + 1e-9));
+    }
   }
 }
 

@@ -194,6 +194,10 @@ struct AnalysisResult {
   /// body on uniformly elastic ground); with Collapse under settlement, when defined.
   std::optional<double> initial_base_reaction;
   bool initial_base_lifts = false;  ///< part of the base is out of contact in that initial state
+  /// NoMechanism under settlement because every state that holds the structure pushes the moving
+  /// supports back against the settlement direction (analysis/settlement_bound.hpp); false when
+  /// their reaction along it merely can fall to 0.
+  bool settlement_pushes_back = false;
   Vec3 settlement_direction = Vec3::Zero();
 
   Mechanism mechanism;  ///< filled for Collapse and CannotStand (falling blocks)

@@ -5,6 +5,7 @@
 #include "analysis/initial_reaction.hpp"
 #include "analysis/mechanism.hpp"
 #include "analysis/non_associative.hpp"
+#include "analysis/settlement_bound.hpp"
 #include "analysis/sensitivities.hpp"
 #include "analysis/solve_steps.hpp"
 #include "model/errors.hpp"
@@ -156,7 +157,9 @@ void write_verdict_text(const model::Model& m, AnalysisResult& result) {
       }
       break;
     case Verdict::NoMechanism:
-      result.verdict_text = "No mechanism: the live load can grow without bound (alpha unbounded).";
+      result.verdict_text = result.type == model::AnalysisType::Settlement
+                                ? no_settlement_collapse_text(m, result)
+                                : "No mechanism: the live load can grow without bound (alpha unbounded).";
       break;
     case Verdict::CannotStand:
       result.verdict_text = cannot_stand_text(m, result);
@@ -413,7 +416,10 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
                                ""});
   }
 
-  if (settle_verdict(m, formulation, solver, solution, deadline, result)) {
+  const bool no_settlement_mechanism =
+      settlement_forms_no_mechanism(m, options, formulation_options, formulation, solution, deadline, result);
+  if (no_settlement_mechanism) record_initial_reaction(m, result);
+  if (!no_settlement_mechanism && settle_verdict(m, formulation, solver, solution, deadline, result)) {
     read_solution(m, formulation, solution, true, result);
     double value = multiplier_value(formulation, solution.x);
     if (request.pyramid_bracket) {

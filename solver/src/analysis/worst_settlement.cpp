@@ -65,15 +65,20 @@ void place(const model::Model& m, const Vec3& axis_x, const Vec3& axis_y, Settle
 
 ConeSample as_sample(const model::Model& m, const AnalysisResult& r, double initial) {
   ConeSample sample;
-  if (r.verdict != Verdict::Collapse || !r.base_reaction) {
+  // Settling along d forms no mechanism (settlement_bound.hpp): the analysis still found a state
+  // of S, with G . d <= 0. Its plane is a cut like any other; its value G . d / R0 is at most 0,
+  // and at least R(d) / R0, the least harmful there is.
+  const bool no_mechanism = r.verdict == Verdict::NoMechanism && !r.mechanism.interfaces.empty();
+  if (!no_mechanism && (r.verdict != Verdict::Collapse || !r.base_reaction)) {
     sample.usable = false;
     sample.why_unusable = r.verdict_text;
     return sample;
   }
   // The ratio is R / R0, and R(d') <= G* . d': a cut on R itself (cone_search divides by w . d).
   // With non-associative friction the same plane only guides the search.
-  sample.ratio = *r.base_reaction / initial;
   sample.supergradient = force_on_moving_supports(m, r);
+  sample.ratio = no_mechanism ? sample.supergradient->dot(m.analysis.settlement_direction) / initial
+                              : *r.base_reaction / initial;
   return sample;
 }
 
