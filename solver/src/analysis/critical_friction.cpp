@@ -123,8 +123,11 @@ void conclude(CriticalFriction& c, const Threshold& t, bool associative) {
     case ThresholdOutcome::FailsAtMaximum:
       c.verdict_text = "No friction up to mu = " + format(kLargestFriction) +
                        (c.scaled_interfaces.empty() ? " at every interface" : " at the chosen interfaces") +
-                       " is enough " + asked(c.target_alpha) + ": overturning or the geometry governs (" + t.stop +
-                       largest_carried(c) + ").";
+                       " is enough " + asked(c.target_alpha) +
+                       (c.scaled_interfaces.empty()
+                            ? ": overturning or the geometry governs ("
+                            : ": overturning, the geometry or the friction of the other interfaces governs (") +
+                       t.stop + largest_carried(c) + ").";
       break;
     case ThresholdOutcome::Failed:
       c.verdict_text = "The search stopped: " + t.stop;

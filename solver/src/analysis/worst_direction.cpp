@@ -19,7 +19,7 @@ void check_request(const model::Model& m) {
     throw model::ModelError("/analysis/type", "the worst direction is searched for a load_multiplier analysis");
   }
   if (!m.live_loads.empty()) {
-    throw model::ModelError("/live_loads", "the worst direction turns the seismic load only; live point loads "
+    throw model::ModelError("/loads/live", "the worst direction turns the seismic load only; live point loads "
                                            "would be scaled by alpha without turning: remove them for this search");
   }
 }
