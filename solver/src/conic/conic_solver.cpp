@@ -361,6 +361,17 @@ Solution ConicSolver::Impl::Run::finish(detail::Termination outcome) {
       solution.z = metrics.z;
       break;
   }
+  // A run that stopped before its first measures (data whose norms overflow, such as a cost of
+  // 1.1e301, found by the fuzz smoke run) still returns vectors of the problem's sizes: NaN where
+  // nothing was computed.
+  if (solution.x.size() != n) solution.x = Vec::Constant(n, nan);
+  if (solution.y.size() != m) solution.y = Vec::Constant(m, nan);
+  if (solution.z.size() != n) solution.z = Vec::Constant(n, nan);
+  // Nor does it claim a solution it cannot give in double precision.
+  const bool claims_solution = outcome.status == SolveStatus::Solved || outcome.status == SolveStatus::SolvedInaccurate;
+  if (claims_solution && !(solution.x.allFinite() && solution.y.allFinite() && solution.z.allFinite())) {
+    outcome = {SolveStatus::NumericalFailure, "the solution is not finite in double precision (data too large?)"};
+  }
   info_.status = outcome.status;
   info_.failure_reason = outcome.reason;
   info_.primal_objective = metrics.primal_objective;
