@@ -25,17 +25,6 @@ json at_defaults(json model) {
   return model;
 }
 
-/// The settling block of ClosedForms.SettlementBaseReaction: R = W (x_G - a) / (L - a).
-json settling_block(double a) {
-  json blocks = json::array({box_block("fixed", -0.5, -0.5, -0.5, a, 1.5, 0.0, "fixed"),
-                             box_block("moving", a + 1e-3, -0.5, -0.5, 4.5, 1.5, 0.0, "moving_support"),
-                             box_block("B", 0.0, 0.0, 0.0, 4.0, 1.0, 1.0)});
-  json model = model_with(blocks);
-  model["defaults"] = {{"unit_weight", 18.0}, {"friction", 0.6}};
-  model["analysis"] = {{"type", "settlement"}};
-  return model;
-}
-
 /// Largest excess of shear over mu N at any contact point of the reported state, in kN.
 double worst_friction_excess(const AnalysisResult& r, const std::vector<double>& friction) {
   double worst = 0.0;

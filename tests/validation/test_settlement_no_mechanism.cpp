@@ -30,17 +30,6 @@ namespace {
 
 using model::Vec3;
 
-json block_on_settling_support() {
-  const double a = 1.5, L = 4.0, h = 1.0, g = 1e-3;
-  json blocks = json::array({box_block("fixed", -0.5, -0.5, -0.5, a, 1.5, 0.0, "fixed"),
-                             box_block("moving", a + g, -0.5, -0.5, L + 0.5, 1.5, 0.0, "moving_support"),
-                             box_block("B", 0.0, 0.0, 0.0, L, 1.0, h)});
-  json model = model_with(blocks);
-  model["defaults"] = {{"unit_weight", 18.0}, {"friction", 0.6}};
-  model["analysis"] = {{"type", "settlement"}, {"formulation", "3d"}};
-  return model;
-}
-
 json settling_along(json model, const Vec3& direction) {
   model["analysis"]["settlement"] = {{"direction", {direction.x(), direction.y(), direction.z()}}};
   return model;
@@ -86,7 +75,7 @@ json flat_arch_settling_inwards(double degrees) {
 // supports can shed their whole reaction along the direction: no mechanism, no R, no sensitivities.
 TEST(SettlementNoMechanism, TheSettlingBlockCollapsesOnlyWhereTheClosedFormIsPositive) {
   for (const double degrees : {0.0, 30.0, 50.0}) {
-    const AnalysisResult r = run(settling_along(block_on_settling_support(), tilted_in_xz(degrees)));
+    const AnalysisResult r = run(settling_along(settling_block(1.5, 4.0, 1.0, "3d"), tilted_in_xz(degrees)));
     const double t = degrees * model::kPi / 180.0;
     const double expected = 14.4 * (std::cos(t) - 0.6 * std::sin(t));
     ASSERT_EQ(r.verdict, Verdict::Collapse) << degrees << ": " << r.verdict_text;
@@ -94,7 +83,7 @@ TEST(SettlementNoMechanism, TheSettlingBlockCollapsesOnlyWhereTheClosedFormIsPos
     EXPECT_LT(relative_error(*r.base_reaction, expected), 1e-6) << degrees << ": " << *r.base_reaction;
   }
   for (const double degrees : {60.0, 65.0, 80.0}) {
-    const AnalysisResult r = run(settling_along(block_on_settling_support(), tilted_in_xz(degrees)));
+    const AnalysisResult r = run(settling_along(settling_block(1.5, 4.0, 1.0, "3d"), tilted_in_xz(degrees)));
     EXPECT_EQ(r.verdict, Verdict::NoMechanism) << degrees << ": " << r.verdict_text;
     EXPECT_FALSE(r.base_reaction) << degrees;
     EXPECT_FALSE(r.sensitivities) << degrees;
@@ -122,7 +111,7 @@ TEST(SettlementNoMechanism, AFlatArchThatPushesItsSupportBackStands) {
 // A structure that cannot stand even with its supports held still says so under settlement: a
 // block overhanging the fixed support beside the settling block.
 TEST(SettlementNoMechanism, AStructureThatCannotStandStillCannot) {
-  json model = block_on_settling_support();
+  json model = settling_block(1.5, 4.0, 1.0, "3d");
   model["blocks"].push_back(box_block("C", -1.4, 0.0, 0.0, -0.2, 1.0, 0.5));
   const AnalysisResult r = run(settling_along(model, tilted_in_xz(20.0)));
   EXPECT_EQ(r.verdict, Verdict::CannotStand) << r.verdict_text;

@@ -32,17 +32,6 @@ using rbla::analysis::WorstSettlementSettings;
 
 using rbla::model::kPi;
 
-json settling_block(double a, double L, double h) {
-  const double g = 1e-3;
-  json blocks = json::array({box_block("fixed", -0.5, -0.5, -0.5, a, 1.5, 0.0, "fixed"),
-                             box_block("moving", a + g, -0.5, -0.5, L + 0.5, 1.5, 0.0, "moving_support"),
-                             box_block("B", 0.0, 0.0, 0.0, L, 1.0, h)});
-  json model = model_with(blocks);
-  model["defaults"] = {{"unit_weight", 18.0}, {"friction", 0.6}};
-  model["analysis"] = {{"type", "settlement"}, {"formulation", "3d"}};
-  return model;
-}
-
 WorstSettlement search(const model::Model& m, double cone_degrees, int max_directions = 30) {
   WorstSettlementSettings settings;
   settings.cone_angle = cone_degrees * kPi / 180.0;
@@ -52,7 +41,7 @@ WorstSettlement search(const model::Model& m, double cone_degrees, int max_direc
 
 TEST(WorstSettlement, ABlockOnASettlingSupportIsWorstHitVertically) {
   const double a = 1.5, L = 4.0, h = 1.0, mu = 0.6;
-  const auto loaded = rbla::io::load_model_text(settling_block(a, L, h).dump());
+  const auto loaded = rbla::io::load_model_text(settling_block(a, L, h, "3d").dump());
   const double W = 18.0 * L * h, n_star = W * (L / 2 - a) / (L - a);
   const WorstSettlement w = search(loaded.model, 30.0);
   ASSERT_EQ(w.verdict, Verdict::Collapse) << w.verdict_text;
@@ -88,7 +77,7 @@ TEST(WorstSettlement, NonAssociativeFrictionIsSearchedButNotCertified) {
   // The vertical settlement of the block has the same closed form with either flow rule
   // (ClosedForms.SettlementBaseReaction); away from it the non-associative R is never below the
   // associative one, so neither is its ratio.
-  json model = settling_block(1.5, 4.0, 1.0);
+  json model = settling_block(1.5, 4.0, 1.0, "3d");
   const auto associative = rbla::io::load_model_text(model.dump());
   model["analysis"]["friction_model"] = "non_associative";
   const auto loaded = rbla::io::load_model_text(model.dump());
@@ -109,7 +98,7 @@ TEST(WorstSettlement, NonAssociativeFrictionIsSearchedButNotCertified) {
 TEST(WorstSettlement, TheSupportForceIsASupergradientTightWhereItWasFound) {
   // R(d) = min over admissible states of G . d: the state found at d gives G* . d = R(d) there,
   // and G* . d' >= R(d') at any other d'.
-  const auto loaded = rbla::io::load_model_text(settling_block(1.0, 4.0, 1.0).dump());
+  const auto loaded = rbla::io::load_model_text(settling_block(1.0, 4.0, 1.0, "3d").dump());
   model::Model m = loaded.model;
   const double tilt = 20.0 * kPi / 180.0;
   m.analysis.settlement_direction = Vec3(std::sin(tilt), 0.0, -std::cos(tilt));
@@ -206,7 +195,7 @@ TEST(WorstSettlement, RefusesALoadMultiplierModelAndAModelWithoutAnInitialReacti
   }
   // A block on one sloping base: ground springs normal to it cannot carry its weight alone, so
   // the reaction before settlement, and with it R / R0, is not defined; the message says why.
-  json model = settling_block(1.5, 4.0, 1.0);
+  json model = settling_block(1.5, 4.0, 1.0, "3d");
   for (json& block : model["blocks"]) {
     for (json& v : block["vertices"]) {
       const double x = v[0], z = v[2], t = 20.0 * kPi / 180.0;

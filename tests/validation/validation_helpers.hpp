@@ -57,6 +57,19 @@ inline json finish(json blocks, const Case& s) {
   return model;
 }
 
+/// The settling block of ClosedForms.SettlementBaseReaction: a block [0, L] x [0, 1] x [0, h]
+/// (unit weight 18, friction 0.6) on a fixed support under [0, a] and a moving one under
+/// [a + 1e-3, L + 0.5], settling along gravity unless the caller sets a direction.
+inline json settling_block(double a, double L = 4.0, double h = 1.0, const std::string& formulation = "auto") {
+  json blocks = json::array({box_block("fixed", -0.5, -0.5, -0.5, a, 1.5, 0.0, "fixed"),
+                             box_block("moving", a + 1e-3, -0.5, -0.5, L + 0.5, 1.5, 0.0, "moving_support"),
+                             box_block("B", 0.0, 0.0, 0.0, L, 1.0, h)});
+  json model = model_with(blocks);
+  model["defaults"] = {{"unit_weight", 18.0}, {"friction", 0.6}};
+  model["analysis"] = {{"type", "settlement"}, {"formulation", formulation}};
+  return model;
+}
+
 /// A free block [0,b]x[0,depth]x[0,h] on a wider fixed base.
 inline json single_block(double b, double h, const Case& s, double depth = 1.0) {
   json blocks = json::array({box_block("base", -0.5, -0.5, -0.5, b + 0.5, depth + 0.5, 0.0, "fixed"),
