@@ -28,6 +28,9 @@ bool solve_reversed(const model::Model& m, const AnalysisOptions& options, const
   const conic::Solution solution = solver.solve();
   result.solve_seconds += seconds_since(solve_start);
   if (!conic::has_solution(solution.info.status)) return false;
+  // The result's solver record is of the last solve: this one.
+  result.solver_info = solution.info;
+  result.interior_point_history = solution.info.history;
   read_solution(reversed, f, solution, true, result);
   return true;
 }
