@@ -425,12 +425,7 @@ void warn_suspicious_units(model::Model& m) {
 double block_scale_tolerance(const model::Model& m) {
   const double tolerance = m.distance_tolerance();
   if (m.blocks.empty()) return tolerance;
-  std::vector<double> sizes;
-  sizes.reserve(m.blocks.size());
-  for (const model::Block& block : m.blocks) sizes.push_back(model::bounding_box_of(block.vertices).diagonal());
-  const auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
-  std::nth_element(sizes.begin(), middle, sizes.end());
-  return std::min(tolerance, kBlockToleranceCap * *middle);
+  return std::min(tolerance, kBlockToleranceCap * m.median_block_size());
 }
 
 }  // namespace

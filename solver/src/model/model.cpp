@@ -125,16 +125,9 @@ std::pair<double, double> main_group_range(std::vector<std::pair<double, double>
 BoundingBox Model::structure_box() const {
   if (blocks.size() < 2) return bounding_box();
   std::vector<BoundingBox> boxes;
-  std::vector<double> sizes;
   boxes.reserve(blocks.size());
-  sizes.reserve(blocks.size());
-  for (const Block& block : blocks) {
-    boxes.push_back(bounding_box_of(block.vertices));
-    sizes.push_back(boxes.back().diagonal());
-  }
-  const auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
-  std::nth_element(sizes.begin(), middle, sizes.end());
-  const double gap = kStructureGapBlocks * *middle;
+  for (const Block& block : blocks) boxes.push_back(bounding_box_of(block.vertices));
+  const double gap = kStructureGapBlocks * median_block_size();
   BoundingBox box;
   std::vector<std::pair<double, double>> intervals(boxes.size());
   for (int axis = 0; axis < 3; ++axis) {
@@ -142,6 +135,16 @@ BoundingBox Model::structure_box() const {
     std::tie(box.min[axis], box.max[axis]) = main_group_range(intervals, gap);
   }
   return box;
+}
+
+double Model::median_block_size() const {
+  if (blocks.empty()) return 0.0;
+  std::vector<double> sizes;
+  sizes.reserve(blocks.size());
+  for (const Block& block : blocks) sizes.push_back(bounding_box_of(block.vertices).diagonal());
+  const auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
+  std::nth_element(sizes.begin(), middle, sizes.end());
+  return *middle;
 }
 
 double Model::distance_tolerance() const {

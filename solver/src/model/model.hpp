@@ -251,6 +251,9 @@ struct Model {
   /// some axis separates from most of the others (structure_box in model.cpp). The default
   /// tolerances are relative to it.
   BoundingBox structure_box() const;
+  /// The median of the blocks' bounding-box diagonals (0 without blocks): the block scale that a
+  /// ground slab or a far marker block does not set.
+  double median_block_size() const;
   std::size_t num_contact_points() const;
   /// The distance tolerance in metres actually used for geometry checks and detection: the
   /// given one, or a fraction (relative_tolerance, else kModelRelativeTolerance) of the diagonal
