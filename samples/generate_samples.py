@@ -978,11 +978,31 @@ def hexahedron(bottom, top):
     return vertices, faces
 
 
+def staggered_voussoir(bottom, top):
+    """A dome voussoir whose bed faces carry a vertex at their middle, where the neighbouring
+    courses' joints fall. bottom and top are rings [inner 0, inner mid, inner 1, outer 1, outer mid,
+    outer 0]; bottom[i] is joined to top[i].
+
+    A bed face lies on a cone through the dome's centre, so a chord face across a whole voussoir
+    would cut the neighbouring course's chords: with 16 voussoirs per course the staggered beds
+    overlapped by 3 cm and gaped by 6 cm on a 10 m dome. Split at the middle, each half is a quad
+    between two rays from the centre (planar) and is exactly the neighbour's half. The inner and
+    outer halves are isosceles trapezoids of a sphere (planar)."""
+    vertices = [[_r(c) for c in p] for p in list(bottom) + list(top)]
+    faces = [[5, 4, 1, 0], [4, 3, 2, 1], [6, 7, 10, 11], [7, 8, 9, 10]]
+    faces += [[j, (j + 1) % 6, 6 + (j + 1) % 6, 6 + j] for j in range(6)]
+    vol, _ = volume_centroid(vertices, faces)
+    if vol < 0.0:
+        faces = [list(reversed(f)) for f in faces]
+    return vertices, faces
+
+
 def scene_dome(args):
     """Hemispherical dome of voussoirs between meridian and parallel planes, courses staggered
     by half a voussoir (so every bed face carries two voussoirs above), an oculus at the top,
     springing at z = 0 on a fixed square slab. Clean faces are planar: a quad between two
-    meridians and two parallels of a sphere is an isosceles trapezoid."""
+    meridians and two parallels of a sphere is an isosceles trapezoid, and a staggered voussoir's
+    bed faces are split where the neighbouring joints fall (staggered_voussoir)."""
     R, t, nr, ns = args.radius, args.thickness, args.rings, args.segments
     top = math.radians(args.oculus)
     if not 0.0 < top < math.pi / 2 or t >= R:
@@ -999,17 +1019,24 @@ def scene_dome(args):
         # theta from the vertical axis; the springing course starts at theta = 90 deg (z = 0)
         z = 0.0 if abs(theta - math.pi / 2) < 1e-15 else r * math.cos(theta)
         return (r * math.sin(theta) * math.cos(phi), r * math.sin(theta) * math.sin(phi), z)
+
+    def ring(theta, phis):
+        return [point(ri, theta, p) for p in phis] + [point(re, theta, p) for p in reversed(phis)]
+    split_beds = args.stagger and nr > 1 and not args.crossing_beds
     wr, ws = len(str(nr - 1)), len(str(ns - 1))
     for k in range(nr):
         th0 = math.pi / 2 - (math.pi / 2 - top) * k / nr
         th1 = math.pi / 2 - (math.pi / 2 - top) * (k + 1) / nr
         shift = 0.5 if (args.stagger and k % 2) else 0.0
         for j in range(ns):
+            name = "d%0*d_%0*d" % (wr, k, ws, j)
             ph0 = 2.0 * math.pi * (j + shift) / ns
             ph1 = 2.0 * math.pi * (j + 1 + shift) / ns
-            bottom = [point(ri, th0, ph0), point(ri, th0, ph1), point(re, th0, ph1), point(re, th0, ph0)]
-            upper = [point(ri, th1, ph0), point(ri, th1, ph1), point(re, th1, ph1), point(re, th1, ph0)]
-            blocks.append(make_block("d%0*d_%0*d" % (wr, k, ws, j), *hexahedron(bottom, upper)))
+            if split_beds:
+                phis = [ph0, 0.5 * (ph0 + ph1), ph1]
+                blocks.append(make_block(name, *staggered_voussoir(ring(th0, phis), ring(th1, phis))))
+            else:
+                blocks.append(make_block(name, *hexahedron(ring(th0, [ph0, ph1]), ring(th1, [ph0, ph1]))))
     model["analysis"] = seismic_analysis([1, 0, 0])
     return model
 
@@ -1233,6 +1260,10 @@ def build_parser():
                    help="half-angle of the oculus seen from the centre, degrees")
     s.add_argument("--no-stagger", dest="stagger", action="store_false",
                    help="align the meridian joints of all courses")
+    s.add_argument("--crossing-beds", action="store_true",
+                   help="one chord face per bed, as faceted CAD domes are drawn: the staggered "
+                        "courses' beds then cross at a few degrees (overlaps and gaps of "
+                        "centimetres when a course has few voussoirs)")
 
     s = sub.add_parser("vault", parents=[common, out, base, imperf], formatter_class=D,
                        help="freeform barrel vault of voussoirs with warped faces (an offset quad "
