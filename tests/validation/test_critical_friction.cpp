@@ -19,25 +19,6 @@ using rbla::analysis::ThresholdOutcome;
 
 using rbla::model::kPi;
 
-/// A squat block (1 x 1 x 0.2) on a fixed base, both tilted by `beta` about the y axis: the bed
-/// joint slopes at beta, and the centroid stays well inside the contact (tipping would need
-/// tan(beta) > 5).
-json inclined_block(double beta, double mu, bool stacked = false) {
-  json blocks = json::array({box_block("base", -1.0, -0.5, -0.3, 1.0, 1.5, 0.0, "fixed"),
-                             box_block("block", -0.5, 0.0, 0.0, 0.5, 1.0, 0.2)});
-  if (stacked) blocks.push_back(box_block("top", -0.4, 0.1, 0.2, 0.4, 0.9, 0.4));
-  for (json& block : blocks) {
-    for (json& v : block["vertices"]) {
-      const double x = v[0], z = v[2];
-      v[0] = std::cos(beta) * x + std::sin(beta) * z;
-      v[2] = -std::sin(beta) * x + std::cos(beta) * z;
-    }
-  }
-  Case c;
-  c.mu = mu;
-  return finish(blocks, c);
-}
-
 rbla::analysis::CriticalFriction search(const json& model, std::optional<double> target, double tolerance) {
   const auto loaded = rbla::io::load_model_text(model.dump());
   rbla::analysis::ThresholdSettings settings;

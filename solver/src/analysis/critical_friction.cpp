@@ -141,6 +141,12 @@ CriticalFriction find_critical_friction(const model::Model& model, std::optional
                                         const AnalysisOptions& options, ThresholdSettings settings,
                                         const std::vector<int>& scaled) {
   const std::vector<int> set = scaled_set(model, scaled);
+  check_bracket_tolerance(model, settings.tolerance);
+  if (target_alpha && settings.tolerance < kCarriedTolerance) {
+    throw model::ModelError("--tolerance", "with a target alpha the friction found carries it to within " +
+                                               format(kCarriedTolerance) + " (relative), so its bracket is exact to "
+                                               "no better: ask for a bracket of at least that");
+  }
   const auto start = Clock::now();
   CriticalFriction c;
   c.target_alpha = target_alpha;

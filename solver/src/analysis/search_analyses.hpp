@@ -7,11 +7,28 @@
 
 #include "analysis/limit_analysis.hpp"
 #include "analysis/solver_reuse.hpp"
+#include "analysis/text.hpp"
 #include "analysis/warm_starts.hpp"
+#include "model/errors.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace rbla::analysis {
+
+/// A search's bracket is only as exact as its analyses, which stop at the model's relative duality
+/// gap and residuals (analysis.tolerances): a bracket asked narrower than ten times those would be
+/// certified on digits the analyses do not give. Refused, saying which tolerance to lower.
+inline void check_bracket_tolerance(const model::Model& m, double tolerance) {
+  constexpr double kDigitsOfMargin = 10.0;
+  const double analyses = std::max(m.analysis.tol_relative_gap, m.analysis.tol_feasibility);
+  if (tolerance >= kDigitsOfMargin * analyses) return;
+  throw model::ModelError("/analysis/tolerances",
+                          "a bracket of " + format(tolerance) + " (relative, --tolerance) is narrower than ten times "
+                          "the analyses' own tolerance (" + format(analyses) + "): its ends would not be exact to "
+                          "it; set relative_gap and feasibility here to at most " +
+                              format(tolerance / kDigitsOfMargin) + ", or ask for a wider bracket");
+}
 
 class SearchAnalyses {
  public:

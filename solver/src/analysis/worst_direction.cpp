@@ -93,6 +93,7 @@ void conclude(WorstDirection& w, const RadialMinimum& search, const RadialSearch
 WorstDirection find_worst_direction(const model::Model& model, const AnalysisOptions& options,
                                     const RadialSearchSettings& settings) {
   check_request(model);
+  check_bracket_tolerance(model, settings.tolerance);
   const auto start = Clock::now();
   WorstDirection w;
   std::tie(w.axis_x, w.axis_y) = model.horizontal_axes();

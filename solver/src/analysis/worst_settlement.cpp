@@ -147,6 +147,7 @@ Vec3 force_on_moving_supports(const model::Model& m, const AnalysisResult& r) {
 WorstSettlement find_worst_settlement(const model::Model& model, const AnalysisOptions& options,
                                       const WorstSettlementSettings& settings) {
   check_request(model);
+  check_bracket_tolerance(model, settings.search.tolerance);
   const auto start = Clock::now();
   WorstSettlement w;
   w.cone_angle = settings.cone_angle;
