@@ -1,0 +1,61 @@
+// A joint is not formed through a third block. Detection accepts two faces as touching across a
+// gap within the joint tolerance; a thin block lying in that gap and touching both (a shim, a damp
+// proof course drawn as its own block) holds them apart, and a joint through it would carry the
+// load through its volume. Closed form: a 1 x 1 x 2 block on a shim 0.7 wide and t thick, on a
+// fixed base, under a horizontal load: block and shim tip together about the shim's far edge,
+//   alpha = (W_C 0.2 + W_S 0.35) / (W_C (1 + t) + W_S t / 2),  W_C = 2 gamma, W_S = 0.7 t gamma
+// (0.199614 at t = 5 mm). With the joint through the shim the block stood on its whole base and
+// alpha was 0.4988.
+#include "validation_helpers.hpp"
+
+#include <string>
+
+namespace rbla::validation {
+namespace {
+
+json shimmed_block(double t) {
+  Case s;
+  s.mu = 0.6;
+  return finish(json::array({box_block("base", -0.5, -0.5, -0.5, 1.5, 1.5, 0.0, "fixed"),
+                             box_block("shim", 0.0, 0.0, 0.0, 0.7, 1.0, t),
+                             box_block("block", 0.0, 0.0, t, 1.0, 1.0, t + 2.0)}),
+                s);
+}
+
+bool has_warning(const std::vector<model::Warning>& warnings, const std::string& code) {
+  for (const model::Warning& w : warnings) {
+    if (w.code == code) return true;
+  }
+  return false;
+}
+
+TEST(JointsThroughBlocks, ABlockOnAShimTipsAboutTheShimsEdge) {
+  for (const double t : {0.001, 0.005, 0.02}) {
+    SCOPED_TRACE(t);
+    const auto loaded = rbla::io::load_model_text(shimmed_block(t).dump());
+    for (const model::ContactInterface& c : loaded.model.interfaces) {
+      EXPECT_FALSE(std::minmax(c.block_a, c.block_b) == std::minmax(0, 2)) << "a joint between the base and the block";
+    }
+    EXPECT_TRUE(has_warning(loaded.model.warnings, "joints_through_blocks"));
+    const AnalysisResult r = rbla::analysis::analyse(loaded.model);
+    const double wc = 2.0, ws = 0.7 * t;
+    const double expected = (wc * 0.2 + ws * 0.35) / (wc * (1.0 + t) + ws * t / 2.0);
+    EXPECT_LT(relative_error(alpha_of(r), expected), 1e-6) << alpha_of(r) << " against " << expected;
+  }
+}
+
+// The filter needs a block between the two faces, not beside them: a block across two supports
+// of the same height keeps both joints (and carries alpha = 0.5 b / h about the far support's edge).
+TEST(JointsThroughBlocks, ABlockAcrossTwoSupportsKeepsBothJoints) {
+  Case s;
+  const json model = finish(json::array({box_block("left", 0.0, 0.0, -0.5, 0.5, 1.0, 0.0, "fixed"),
+                                         box_block("right", 0.5, 0.0, -0.5, 1.0, 1.0, 0.0, "fixed"),
+                                         box_block("block", 0.0, 0.0, 0.0, 1.0, 1.0, 2.0)}),
+                            s);
+  const auto loaded = rbla::io::load_model_text(model.dump());
+  EXPECT_EQ(loaded.model.interfaces.size(), 2u);
+  EXPECT_FALSE(has_warning(loaded.model.warnings, "joints_through_blocks"));
+}
+
+}  // namespace
+}  // namespace rbla::validation
