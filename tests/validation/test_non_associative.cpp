@@ -220,6 +220,15 @@ TEST(NonAssociative, TheCircumscribedPyramidIsNamedAsAnotherFrictionLaw) {
       EXPECT_NE(warned->message.find("1.41 mu N"), std::string::npos) << warned->message;
     }
   }
+  // In the planar formulation every cone has two edges whatever the setting (rbla says the pyramid
+  // changes nothing): no warning that it might (the review found both warnings on one run).
+  Case planar;
+  planar.formulation = "auto";
+  planar.cone = "pyramid_circumscribed";
+  planar.pyramid_faces = 4;
+  const auto p = run(at_defaults(finish(running_bond_blocks(5, 6), planar)));
+  ASSERT_EQ(p.verdict, Verdict::Collapse) << p.verdict_text;
+  for (const auto& w : p.warnings) EXPECT_NE(w.code, "non_associative_circumscribed_pyramid") << w.message;
 }
 
 // Each run counts the interior-point iterations of its steps (the history's, step 0 being the
@@ -326,6 +335,50 @@ TEST(NonAssociative, ALaterRunCanBeTheOneReported) {
   ASSERT_EQ(n.non_associative_trajectories.size(), 6u);
   EXPECT_GT(n.non_associative_reported, 0);
   EXPECT_LT(*n.load_multiplier, n.non_associative_trajectories[0].value * (1.0 - 1e-3));
+}
+
+// A block wedged between a fixed wall and a heavy free column, pushed down by a live load equal to
+// its weight (the review's case, after Drucker 1954): with associative friction it can only slide
+// by pushing the column away (alpha 12.5), without dilatancy it slides down under its own weight
+// with the clamping force W / (2 mu) on each side, so alpha = 0 is a non-associative collapse
+// state. Its test gap was measured relative to alpha itself (1e-11), so the exact state at
+// alpha = 0 could never be certified; it is, now that the scale has a floor of 1e-6 and the test
+// allows for the solves' own accuracy.
+TEST(NonAssociative, AWedgedBlockSlidesUnderItsOwnWeight) {
+  Case s;
+  json model = finish(json::array({box_block("base", -1.0, 0.0, -0.5, 5.0, 1.0, 0.0, "fixed"),
+                                   box_block("wall", -1.0, 0.0, 0.0, 0.0, 1.0, 4.0, "fixed"),
+                                   box_block("column", 1.0, 0.0, 0.0, 4.0, 1.0, 4.0),
+                                   box_block("wedged", 0.0, 0.0, 2.0, 1.0, 1.0, 3.0)}),
+                      s);
+  model["loads"] = {{"live", json::array({{{"block", "wedged"}, {"force", {0.0, 0.0, -18.0}}}})}};
+  model["analysis"].erase("seismic");
+  const AnalysisResult associative = run(model);
+  EXPECT_GT(alpha_of(associative), 1.0);
+  const AnalysisResult r = run(at_defaults(model));
+  EXPECT_TRUE(r.non_associative_converged) << r.non_associative_stop;
+  EXPECT_LT(std::abs(alpha_of(r)), 1e-6);
+}
+
+// Between a fixed wall and a fixed pier the wedged block has no associative mechanism (it cannot
+// push either away), so the scheme has nothing to start from. Sliding down under its own weight is
+// still a non-associative collapse state (as beside the free column above): the verdict must not
+// present "no mechanism" as certified for non-associative friction.
+TEST(NonAssociative, NoAssociativeMechanismIsNotCertifiedAsNone) {
+  Case s;
+  json model = finish(json::array({box_block("base", -1.0, 0.0, -0.5, 3.0, 1.0, 0.0, "fixed"),
+                                   box_block("wall", -1.0, 0.0, 0.0, 0.0, 1.0, 4.0, "fixed"),
+                                   box_block("pier", 1.0, 0.0, 0.0, 2.0, 1.0, 4.0, "fixed"),
+                                   box_block("wedged", 0.0, 0.0, 2.0, 1.0, 1.0, 3.0)}),
+                      s);
+  model["loads"] = {{"live", json::array({{{"block", "wedged"}, {"force", {0.0, 0.0, -18.0}}}})}};
+  model["analysis"].erase("seismic");
+  const AnalysisResult r = run(at_defaults(model));
+  ASSERT_EQ(r.verdict, Verdict::NoMechanism) << r.verdict_text;
+  EXPECT_NE(r.verdict_text.find("not certified"), std::string::npos) << r.verdict_text;
+  bool warned = false;
+  for (const auto& w : r.warnings) warned = warned || w.code == "non_associative_not_run";
+  EXPECT_TRUE(warned);
 }
 
 }  // namespace

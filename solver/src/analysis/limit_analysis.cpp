@@ -128,6 +128,25 @@ std::string non_associative_clause(const model::Model& m, const AnalysisResult& 
          "non-associative collapse state has " + bound;
 }
 
+/// Said of a non-associative analysis whose associative problem has no mechanism. The scheme
+/// starts from the associative mechanism, and without dilatancy a block held only by friction
+/// between supports (wedged, clamped) can slide at any load, even under its own weight: a block
+/// wedged between a fixed wall and a fixed pier has no associative mechanism, while sliding down
+/// with a clamping force of W / (2 mu) on each side is a non-associative collapse state at 0.
+constexpr const char* kNoAssociativeMechanism =
+    "That is with associative friction; for non-associative friction it is not certified: the scheme starts "
+    "from the associative mechanism and there is none, while blocks held only by friction between supports "
+    "(wedged, clamped) may slide at any load, even under their own weight.";
+
+/// The warning that goes with kNoAssociativeMechanism.
+void warn_no_associative_mechanism(AnalysisResult& result) {
+  if (result.friction_model != model::FrictionModel::NonAssociative || result.verdict != Verdict::NoMechanism) return;
+  result.warnings.push_back({"non_associative_not_run",
+                             "the associative problem has no mechanism, so the non-associative scheme did not run; "
+                             "no mechanism is certified for non-associative friction",
+                             "/analysis/friction_model"});
+}
+
 void write_verdict_text(const model::Model& m, AnalysisResult& result) {
   const std::string force_unit = m.units.force_name;
   std::size_t falling = 0;
@@ -160,6 +179,9 @@ void write_verdict_text(const model::Model& m, AnalysisResult& result) {
       result.verdict_text = result.type == model::AnalysisType::Settlement
                                 ? no_settlement_collapse_text(m, result)
                                 : "No mechanism: the live load can grow without bound (alpha unbounded).";
+      if (result.friction_model == model::FrictionModel::NonAssociative) {
+        result.verdict_text += " " + std::string(kNoAssociativeMechanism);
+      }
       break;
     case Verdict::CannotStand:
       result.verdict_text = cannot_stand_text(m, result);
@@ -434,6 +456,7 @@ AnalysisResult analyse(const model::Model& m, const AnalysisOptions& options) {
     }
   }
   warn_arbitrary_blocks(m, result);
+  warn_no_associative_mechanism(result);
   write_verdict_text(m, result);
   return result;
 }

@@ -230,10 +230,12 @@ class ShiftScheme {
   }
 
  private:
-  /// Scale of the value for relative measures: |alpha| (at least 1e-12), or |R| (at least a
-  /// millionth of the mean block weight).
+  /// Scale of the value for relative measures: |alpha| (at least 1e-6: a live load a millionth of
+  /// its own size), or |R| (at least a millionth of the mean block weight). A floor far below that
+  /// made a state at alpha = 0 (a block wedged between walls that slides under its own weight)
+  /// impossible to certify: its test gap of 1e-11 was 10 times its value.
   double scale(double v) const {
-    return f_.settlement ? std::max(std::abs(v), 1e-6 * f_.force_scale) : std::max(std::abs(v), 1e-12);
+    return f_.settlement ? std::max(std::abs(v), 1e-6 * f_.force_scale) : std::max(std::abs(v), 1e-6);
   }
 
   /// Largest change of a point's normal force (kN) since the previous call.
@@ -364,7 +366,11 @@ class ShiftScheme {
     ++result_.non_associative_checks;
     if (!conic::has_solution(capped.info.status)) return false;
     const double v_state = multiplier_value(f_, state.x), v_capped = multiplier_value(cylinder_, capped.x);
-    const double slack = request_.non_associative_tolerance * scale(v_state);
+    // Both values are exact only to the solves' gap (relative to max(1, |value|) in the problem's
+    // units): a difference below ten times that is noise, however close to 0 the value is.
+    const double noise = 10.0 * request_.tol_relative_gap *
+                         (f_.settlement ? std::max(f_.force_scale, std::abs(v_state)) : std::max(1.0, std::abs(v_state)));
+    const double slack = request_.non_associative_tolerance * scale(v_state) + noise;
     const bool confirmed = f_.settlement ? v_capped >= v_state - slack : v_capped <= v_state + slack;
     result_.non_associative_gap = (f_.settlement ? v_state - v_capped : v_capped - v_state) / scale(v_state);
     Eigen::VectorXd capped_y = capped.y;
@@ -488,9 +494,10 @@ void warn_about_spread(const model::Model& m, const Formulation& f, AnalysisResu
 
 /// The circumscribed pyramid's edges reach mu N / cos(pi/m): the scheme's states and its test
 /// (a prism of the same shape) follow that friction law, so a certified state may carry more shear
-/// than Coulomb's cone allows and be on the unsafe side of Coulomb's non-associative states.
+/// than Coulomb's cone allows and be on the unsafe side of Coulomb's non-associative states. A
+/// planar scene's cone has exactly two edges whatever the setting: nothing to warn about.
 void warn_about_circumscribed_pyramid(const model::Model& m, AnalysisResult& result) {
-  if (m.analysis.cone != model::ConeKind::PyramidCircumscribed) return;
+  if (m.analysis.cone != model::ConeKind::PyramidCircumscribed || result.planar) return;
   const double reach = 1.0 / std::cos(model::kPi / m.analysis.pyramid_faces);
   result.warnings.push_back(
       {"non_associative_circumscribed_pyramid",
