@@ -8,6 +8,7 @@
 // alpha was 0.4988.
 #include "validation_helpers.hpp"
 
+#include <cstdlib>
 #include <string>
 
 namespace rbla::validation {
@@ -55,6 +56,25 @@ TEST(JointsThroughBlocks, ABlockAcrossTwoSupportsKeepsBothJoints) {
   const auto loaded = rbla::io::load_model_text(model.dump());
   EXPECT_EQ(loaded.model.interfaces.size(), 2u);
   EXPECT_FALSE(has_warning(loaded.model.warnings, "joints_through_blocks"));
+}
+
+// Slabs 1 cm thick under a joint tolerance of 30 cm (3 % of their 10 m faces): each slab touches
+// only its neighbours. Without the two rules, the bottom of one slab and the top of the one above
+// (back to back across a slab) and every pair of slabs with slabs between them were joined too.
+TEST(JointsThroughBlocks, ThinSlabsStackedJoinOnlyTheirNeighbours) {
+  json blocks = json::array({box_block("base", -1.0, -1.0, -0.5, 11.0, 2.0, 0.0, "fixed")});
+  for (int k = 0; k < 5; ++k) {
+    blocks.push_back(box_block("S" + std::to_string(k), 0.0, 0.0, 0.01 * k, 10.0, 1.0, 0.01 * (k + 1)));
+  }
+  Case s;
+  const auto loaded = rbla::io::load_model_text(finish(blocks, s).dump());
+  ASSERT_EQ(loaded.model.interfaces.size(), 5u);
+  for (const model::ContactInterface& c : loaded.model.interfaces) {
+    EXPECT_EQ(std::abs(c.block_a - c.block_b), 1) << c.block_a << " and " << c.block_b;
+    EXPECT_NEAR(c.area, 10.0, 1e-9);
+  }
+  EXPECT_TRUE(has_warning(loaded.model.warnings, "joints_through_blocks"));
+  EXPECT_EQ(loaded.model.detection_summary.through_blocks.joints, 10u);
 }
 
 }  // namespace

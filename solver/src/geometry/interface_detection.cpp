@@ -1,5 +1,7 @@
 #include "geometry/interface_detection.hpp"
 
+#include "geometry/joints_through_blocks.hpp"
+
 #include "geometry/polygon2d.hpp"
 #include "geometry/polyhedron.hpp"
 #include "geometry/sweep.hpp"
@@ -175,6 +177,22 @@ double plane_height(const FacePatch& patch, const PairGeometry& g, const Point2&
   return (patch.normal.dot(patch.point) - patch.normal.dot(p.x() * g.t1 + p.y() * g.t2)) / patch.normal.dot(g.normal);
 }
 
+/// The block's thickness along n: the spread of its vertices' heights.
+double extent_along(const model::Block& block, const Vec3& n) {
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const Vec3& v : block.vertices) {
+    low = std::min(low, v.dot(n));
+    high = std::max(high, v.dot(n));
+  }
+  return high - low;
+}
+
+/// Two faces whose planes are within the tolerance may still face away from each other: the bottom
+/// of one thin slab and the top of the slab above it, back to back across the first slab's
+/// thickness. The faces of a joint face each other, up to a CAD overlap; one face lying behind the
+/// other by more than this fraction of the thinner block's thickness is no joint.
+constexpr double kBackToBackFraction = 0.5;
+
 Polygon2 project(const model::Block& block, const FacePatch& patch, const PairGeometry& g) {
   Polygon2 polygon;
   polygon.reserve(patch.outline.size());
@@ -265,22 +283,21 @@ PairOutcome compare(const model::Model& m, int a, int b, const FacePatch& pa, co
   const Polygon2 qa = project(m.blocks[a], pa, g), qb = project(m.blocks[b], pb, g);
   const std::vector<Polygon2> pieces = g.larger_first ? intersect(qa, qb, 0.25 * g.tolerance, min_area)
                                                       : intersect(qb, qa, 0.25 * g.tolerance, min_area);
+  const double thinner = std::min(extent_along(m.blocks[a], g.normal), extent_along(m.blocks[b], g.normal));
   for (const Polygon2& piece : pieces) {
-    double distance = 0.0;
-    for (const Point2& p : piece) distance = std::max(distance, std::abs(plane_height(pb, g, p) - plane_height(pa, g, p)));
-    if (distance > range) continue;
+    double distance = 0.0, behind = 0.0;
+    for (const Point2& p : piece) {
+      const double gap = plane_height(pb, g, p) - plane_height(pa, g, p);  // > 0: b's face in front of a's
+      distance = std::max(distance, std::abs(gap));
+      behind = std::max(behind, -gap);
+    }
+    if (distance > range || behind > kBackToBackFraction * thinner) continue;
     result.overlapping = true;
     if (g.angle_degrees <= tol.angle_degrees && distance <= g.tolerance) {
       out.interfaces.push_back(make_interface(a, b, pa, pb, g, piece, m.default_friction));
       out.gaps.push_back(distance);
       out.angles.push_back(g.angle_degrees);
       out.tolerances.push_back(g.tolerance);
-      if (g.tolerance > 0.0) out.largest_gap_fraction = std::max(out.largest_gap_fraction, distance / g.tolerance);
-      model::WideGaps& wide = out.wide_gaps;
-      if (distance > kWideGapFraction * g.tolerance) {
-        ++wide.joints;
-        if (distance > wide.widest) wide = {wide.joints, distance, g.tolerance, a, b};
-      }
       result.accepted = true;
     } else if (distance < result.closest.distance) {
       model::NearMiss& miss = result.closest;
@@ -327,6 +344,44 @@ void match_patches(const model::Model& m, int a, int b, const FacePatch& pa, con
   if (!best.accepted && best.overlapping && std::isfinite(best.closest.distance)) out.near_misses.push_back(best.closest);
 }
 
+/// Drops the joints through a third block (geometry/joints_through_blocks.hpp) with their gaps,
+/// angles and tolerances, and records the first.
+void drop_joints_through_blocks(const model::Model& m, const DetectionTolerances& tol, Collector& c,
+                                model::JointsThroughBlocks& through) {
+  const std::vector<int> between = blocks_between(m.interfaces, c.interfaces, tol.angle_degrees);
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < between.size(); ++k) {
+    if (between[k] >= 0) {
+      if (through.joints++ == 0) through = {1, c.interfaces[k].block_a, c.interfaces[k].block_b, between[k]};
+      continue;
+    }
+    if (kept != k) {  // a vector moved onto itself may be left empty
+      c.interfaces[kept] = std::move(c.interfaces[k]);
+      c.gaps[kept] = c.gaps[k];
+      c.angles[kept] = c.angles[k];
+      c.tolerances[kept] = c.tolerances[k];
+    }
+    ++kept;
+  }
+  c.interfaces.resize(kept);
+  c.gaps.resize(kept);
+  c.angles.resize(kept);
+  c.tolerances.resize(kept);
+}
+
+/// The largest gap over its tolerance, and the joints accepted across more than kWideGapFraction.
+void tally_gaps(Collector& c) {
+  model::WideGaps& wide = c.wide_gaps;
+  for (std::size_t k = 0; k < c.interfaces.size(); ++k) {
+    const double gap = c.gaps[k], tolerance = c.tolerances[k];
+    if (tolerance > 0.0) c.largest_gap_fraction = std::max(c.largest_gap_fraction, gap / tolerance);
+    if (gap > kWideGapFraction * tolerance) {
+      ++wide.joints;
+      if (gap > wide.widest) wide = {wide.joints, gap, tolerance, c.interfaces[k].block_a, c.interfaces[k].block_b};
+    }
+  }
+}
+
 model::DetectionSummary summarise(Collector& c, const DetectionTolerances& tol, std::size_t candidates,
                                   std::size_t merged) {
   model::DetectionSummary s;
@@ -368,8 +423,12 @@ DetectionOutcome detect_interfaces(const model::Model& m, const std::vector<std:
       }
     }
   }
+  model::JointsThroughBlocks through;
+  drop_joints_through_blocks(m, tol, collected, through);
+  tally_gaps(collected);
   DetectionOutcome outcome;
   outcome.summary = summarise(collected, tol, candidates.size(), merged);
+  outcome.summary.through_blocks = through;
   auto& misses = collected.near_misses;
   const std::size_t keep = std::min(misses.size(), static_cast<std::size_t>(std::max(m.detection.max_near_misses, 0)));
   auto closer = [&](const model::NearMiss& x, const model::NearMiss& y) {

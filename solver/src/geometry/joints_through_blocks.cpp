@@ -64,34 +64,25 @@ int block_between(const std::vector<ContactInterface>& all, const std::vector<st
 
 }  // namespace
 
-std::vector<JointThroughBlock> drop_joints_through_blocks(std::vector<ContactInterface>& interfaces,
-                                                          double angle_degrees) {
+std::vector<int> blocks_between(const std::vector<ContactInterface>& given,
+                                const std::vector<ContactInterface>& detected, double angle_degrees) {
+  std::vector<ContactInterface> all = given;
+  all.insert(all.end(), detected.begin(), detected.end());
   int blocks = 0;
-  for (const ContactInterface& c : interfaces) blocks = std::max({blocks, c.block_a + 1, c.block_b + 1});
+  for (const ContactInterface& c : all) blocks = std::max({blocks, c.block_a + 1, c.block_b + 1});
   std::vector<std::vector<int>> of_block(static_cast<std::size_t>(blocks));
   std::map<std::pair<int, int>, std::vector<int>> of_pair;
-  for (int k = 0; k < static_cast<int>(interfaces.size()); ++k) {
-    of_block[interfaces[k].block_a].push_back(k);
-    of_block[interfaces[k].block_b].push_back(k);
-    of_pair[std::minmax(interfaces[k].block_a, interfaces[k].block_b)].push_back(k);
+  for (int k = 0; k < static_cast<int>(all.size()); ++k) {
+    of_block[all[k].block_a].push_back(k);
+    of_block[all[k].block_b].push_back(k);
+    of_pair[std::minmax(all[k].block_a, all[k].block_b)].push_back(k);
   }
   const double cos_angle = std::cos(model::radians(angle_degrees));
-  std::vector<JointThroughBlock> dropped;
-  std::vector<bool> drop(interfaces.size(), false);
-  for (int k = 0; k < static_cast<int>(interfaces.size()); ++k) {
-    if (!interfaces[k].detected) continue;
-    const int s = block_between(interfaces, of_block, of_pair, k, cos_angle);
-    if (s < 0) continue;
-    drop[k] = true;
-    dropped.push_back({interfaces[k].block_a, interfaces[k].block_b, s});
+  std::vector<int> between(detected.size(), -1);
+  for (std::size_t k = 0; k < detected.size(); ++k) {
+    between[k] = block_between(all, of_block, of_pair, static_cast<int>(given.size() + k), cos_angle);
   }
-  std::vector<ContactInterface> kept;
-  kept.reserve(interfaces.size() - dropped.size());
-  for (std::size_t k = 0; k < interfaces.size(); ++k) {
-    if (!drop[k]) kept.push_back(std::move(interfaces[k]));
-  }
-  interfaces = std::move(kept);
-  return dropped;
+  return between;
 }
 
 }  // namespace rbla::geometry

@@ -1,7 +1,6 @@
 #include "geometry/prepare_model.hpp"
 
 #include "geometry/face_patches.hpp"
-#include "geometry/joints_through_blocks.hpp"
 #include "geometry/overlap.hpp"
 #include "geometry/polyhedron.hpp"
 #include "geometry/surface_distance.hpp"
@@ -367,12 +366,12 @@ void warn_about_wide_gaps(model::Model& m) {
 }
 
 /// Joints dropped because a third block lies between their faces: said once, with the first.
-void warn_about_joints_through_blocks(model::Model& m, const std::vector<JointThroughBlock>& through) {
-  if (through.empty()) return;
-  const JointThroughBlock& t = through.front();
+void warn_about_joints_through_blocks(model::Model& m) {
+  const model::JointsThroughBlocks& t = m.detection_summary.through_blocks;
+  if (t.joints == 0) return;
   m.warnings.push_back(
       {"joints_through_blocks",
-       (through.size() == 1 ? std::string("a joint was") : std::to_string(through.size()) + " joints were") +
+       (t.joints == 1 ? std::string("a joint was") : std::to_string(t.joints) + " joints were") +
            " not formed because a third block lies between the two faces, touching both (blocks '" +
            m.blocks[t.block_a].id + "' and '" + m.blocks[t.block_b].id + "' are held apart by '" +
            m.blocks[t.between].id + "'): the gap between them is within the joint tolerance, but it is filled",
@@ -392,24 +391,19 @@ void add_detected_interfaces(model::Model& m, PrepareReport& report) {
   m.near_misses = std::move(outcome.near_misses);
   m.detection_summary = outcome.summary;
   report.detection = outcome.summary;
-  const std::size_t given = m.interfaces.size();
-  for (auto& contact : found) m.interfaces.push_back(std::move(contact));
-  const std::vector<JointThroughBlock> through =
-      drop_joints_through_blocks(m.interfaces, m.detection.angle_tolerance_degrees);
-  m.detection_summary.interfaces_found -= through.size();
-  report.detection = m.detection_summary;
   std::set<std::string> used_ids;
-  for (std::size_t k = 0; k < given; ++k) used_ids.insert(m.interfaces[k].id);
+  for (const auto& contact : m.interfaces) used_ids.insert(contact.id);
   std::size_t next = 0;
-  for (std::size_t k = given; k < m.interfaces.size(); ++k) {
+  for (auto& contact : found) {
     do {
-      m.interfaces[k].id = "I" + std::to_string(next++);
-    } while (used_ids.count(m.interfaces[k].id));
+      contact.id = "I" + std::to_string(next++);
+    } while (used_ids.count(contact.id));
+    m.interfaces.push_back(std::move(contact));
   }
   report.detect_seconds = seconds_since(detect_start);
   report.detection_ran = true;
   warn_about_wide_gaps(m);
-  warn_about_joints_through_blocks(m, through);
+  warn_about_joints_through_blocks(m);
 }
 
 /// A free block that touches nothing can only fall; say so now rather than leave the user to

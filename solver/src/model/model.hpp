@@ -184,6 +184,13 @@ struct WideGaps {
   int block_a = -1, block_b = -1;
 };
 
+/// Detected joints dropped because a third block lies between their faces; the first one found.
+struct JointsThroughBlocks {
+  std::size_t joints = 0;
+  int block_a = -1, block_b = -1;
+  int between = -1;
+};
+
 struct DetectionSummary {
   bool ran = false;
   bool per_joint = true;             ///< tolerances from each joint's size (else one fixed tolerance)
@@ -195,6 +202,7 @@ struct DetectionSummary {
   Spread angles;                     ///< degrees, deviation from opposite of each accepted joint
   double largest_gap_fraction = 0.0; ///< the largest gap of an accepted joint over its tolerance
   WideGaps wide_gaps;
+  JointsThroughBlocks through_blocks;
   std::size_t candidate_block_pairs = 0;
   std::size_t face_pairs_tested = 0;
   std::size_t merged_faces = 0;      ///< faces merged into a neighbouring coplanar face of their block
