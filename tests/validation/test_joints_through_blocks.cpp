@@ -8,6 +8,9 @@
 // alpha was 0.4988.
 #include "validation_helpers.hpp"
 
+#include "model/angles.hpp"
+
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -75,6 +78,44 @@ TEST(JointsThroughBlocks, ThinSlabsStackedJoinOnlyTheirNeighbours) {
   }
   EXPECT_TRUE(has_warning(loaded.model.warnings, "joints_through_blocks"));
   EXPECT_EQ(loaded.model.detection_summary.through_blocks.joints, 10u);
+}
+
+// Only faces apart everywhere are held apart by a block. A 1 m cube tilted by 0.1 degrees about
+// its left bottom edge touches the base along that edge and is 1.7 mm clear at the right, where a
+// pinning stone fills the gap at one corner: all three joints stay and the cube stands (it slides
+// at alpha = tan(atan(0.6) + 0.1 deg), 0.6012). The second review found it "cannot stand" when the
+// cube's joint with the base was dropped because of the stone.
+TEST(JointsThroughBlocks, ABlockTouchingTheBaseKeepsItsJointBesideAPinningStone) {
+  const double tilt = 0.1 * model::kPi / 180.0;
+  json cube = box_block("cube", 0.0, 0.0, 0.0, 1.0, 1.0, 1.0);
+  for (json& v : cube["vertices"]) {
+    const double x = v[0], z = v[2];
+    v[0] = std::cos(tilt) * x - std::sin(tilt) * z;
+    v[2] = std::sin(tilt) * x + std::cos(tilt) * z;
+  }
+  const double under = 0.9 * std::sin(tilt);  // the cube's bottom above x = 0.9, where the stone's top is
+  Case s;
+  const json model = finish(json::array({box_block("base", -1.0, -1.0, -0.5, 2.0, 2.0, 0.0, "fixed"),
+                                         box_block("stone", 0.9, 0.0, 0.0, 0.97, 0.1, under), cube}),
+                            s);
+  const auto loaded = rbla::io::load_model_text(model.dump());
+  EXPECT_EQ(loaded.model.interfaces.size(), 3u);
+  EXPECT_FALSE(has_warning(loaded.model.warnings, "joints_through_blocks"));
+  const AnalysisResult r = rbla::analysis::analyse(loaded.model);
+  EXPECT_LT(relative_error(alpha_of(r), std::tan(std::atan(0.6) + tilt)), 2e-3) << alpha_of(r);
+}
+
+// Supports form no joints with each other, so a plinth that is itself a support shows no joint to
+// the ground under it; it still holds the block apart from the ground. A 1 x 1 x 2 block on a fixed
+// plinth 5 mm thick under 70 % of its base tips about the plinth's edge: alpha = 0.2 / 1.
+TEST(JointsThroughBlocks, AFixedPlinthHoldsTheBlockApartFromTheGround) {
+  Case s;
+  const json model = finish(json::array({box_block("ground", -0.5, -0.5, -0.5, 1.5, 1.5, 0.0, "fixed"),
+                                         box_block("plinth", 0.0, 0.0, 0.0, 0.7, 1.0, 0.005, "fixed"),
+                                         box_block("block", 0.0, 0.0, 0.005, 1.0, 1.0, 2.005)}),
+                            s);
+  const AnalysisResult r = run(model);
+  EXPECT_LT(relative_error(alpha_of(r), 0.2), 1e-6) << alpha_of(r);
 }
 
 }  // namespace

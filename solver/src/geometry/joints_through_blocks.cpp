@@ -42,17 +42,20 @@ bool overlap_along(const ContactInterface& a, const ContactInterface& b, const C
   return common > 0.01 * smaller;
 }
 
-/// A block S between A and B under joint ab: S touches A and B with contacts facing as ab does,
-/// both overlapping ab. -1 when there is none.
-int block_between(const std::vector<ContactInterface>& all, const std::vector<std::vector<int>>& of_block,
-                  const std::map<std::pair<int, int>, std::vector<int>>& of_pair, int ab, double cos_angle) {
+/// A block S between A and B under joint ab, seen from A: S touches A with a contact facing as ab
+/// does and overlapping it, and touches B the same way (or S and B are both supports). -1 when
+/// there is none.
+int block_between_from(const model::Model& m, const std::vector<ContactInterface>& all,
+                       const std::vector<std::vector<int>>& of_block,
+                       const std::map<std::pair<int, int>, std::vector<int>>& of_pair, int ab, int a, int b,
+                       double cos_angle) {
   const ContactInterface& joint = all[ab];
-  const int a = joint.block_a, b = joint.block_b;
-  const Vec3 n = joint.normal;  // out of a, into b
+  const Vec3 n = normal_out_of(joint, a);
   for (const int as : of_block[a]) {
     const int s = other_block(all[as], a);
     if (as == ab || s == b || normal_out_of(all[as], a).dot(n) < cos_angle) continue;
     if (!overlap_along(all[as], joint, joint)) continue;
+    if (m.blocks[s].is_support() && m.blocks[b].is_support()) return s;
     const auto sb = of_pair.find(std::minmax(s, b));
     if (sb == of_pair.end()) continue;
     for (const int k : sb->second) {
@@ -62,15 +65,28 @@ int block_between(const std::vector<ContactInterface>& all, const std::vector<st
   return -1;
 }
 
+/// Either way round: A's joints are searched for S (supports form no joints with each other, so the
+/// side that is not a support must be A).
+int block_between(const model::Model& m, const std::vector<ContactInterface>& all,
+                  const std::vector<std::vector<int>>& of_block,
+                  const std::map<std::pair<int, int>, std::vector<int>>& of_pair, int ab, double cos_angle) {
+  const ContactInterface& joint = all[ab];
+  for (const bool reversed : {false, true}) {
+    const int a = reversed ? joint.block_b : joint.block_a, b = reversed ? joint.block_a : joint.block_b;
+    const int s = block_between_from(m, all, of_block, of_pair, ab, a, b, cos_angle);
+    if (s >= 0) return s;
+  }
+  return -1;
+}
+
 }  // namespace
 
-std::vector<int> blocks_between(const std::vector<ContactInterface>& given,
-                                const std::vector<ContactInterface>& detected, double angle_degrees) {
-  std::vector<ContactInterface> all = given;
+std::vector<int> blocks_between(const model::Model& m, const std::vector<ContactInterface>& detected,
+                                const std::vector<bool>& apart, double angle_degrees) {
+  std::vector<ContactInterface> all = m.interfaces;
+  const std::size_t given = all.size();
   all.insert(all.end(), detected.begin(), detected.end());
-  int blocks = 0;
-  for (const ContactInterface& c : all) blocks = std::max({blocks, c.block_a + 1, c.block_b + 1});
-  std::vector<std::vector<int>> of_block(static_cast<std::size_t>(blocks));
+  std::vector<std::vector<int>> of_block(m.blocks.size());
   std::map<std::pair<int, int>, std::vector<int>> of_pair;
   for (int k = 0; k < static_cast<int>(all.size()); ++k) {
     of_block[all[k].block_a].push_back(k);
@@ -80,7 +96,7 @@ std::vector<int> blocks_between(const std::vector<ContactInterface>& given,
   const double cos_angle = std::cos(model::radians(angle_degrees));
   std::vector<int> between(detected.size(), -1);
   for (std::size_t k = 0; k < detected.size(); ++k) {
-    between[k] = block_between(all, of_block, of_pair, static_cast<int>(given.size() + k), cos_angle);
+    if (apart[k]) between[k] = block_between(m, all, of_block, of_pair, static_cast<int>(given + k), cos_angle);
   }
   return between;
 }
