@@ -63,5 +63,20 @@ TEST(NarrowContacts, AManySidedColumnTipsAboutItsCorner) {
   EXPECT_LT(relative_error(alpha_of(rbla::analysis::analyse(loaded.model)), 0.5), 1e-6);
 }
 
+// A slab 8 m long and 0.2 m thick spans 1 m between two walls 0.5 m thick, bearing 4 cm on each
+// (8 % of a wall's top, narrower than a quarter of its 24 cm tolerance): real bearing strips, not
+// slivers. It slides at alpha = mu = 0.6 (tipping would need b/h far above it). Before, "cannot
+// stand" (the third review).
+TEST(NarrowContacts, ASlabBearingOnNarrowStripsOfTwoWallsStands) {
+  Case s;
+  const json model = finish(json::array({box_block("left", -0.5, 0.0, -1.0, 0.0, 8.0, 0.0, "fixed"),
+                                         box_block("right", 1.0, 0.0, -1.0, 1.5, 8.0, 0.0, "fixed"),
+                                         box_block("slab", -0.04, 0.0, 0.0, 1.04, 8.0, 0.2)}),
+                            s);
+  const auto loaded = rbla::io::load_model_text(model.dump());
+  EXPECT_EQ(loaded.model.interfaces.size(), 2u);
+  EXPECT_LT(relative_error(alpha_of(rbla::analysis::analyse(loaded.model)), 0.6), 1e-6);
+}
+
 }  // namespace
 }  // namespace rbla::validation

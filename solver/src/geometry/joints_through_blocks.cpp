@@ -29,6 +29,13 @@ Polygon2 seen_along(const ContactInterface& c, const ContactInterface& frame) {
   return p;
 }
 
+/// The mean height of a contact's corners along n.
+double height_along(const ContactInterface& c, const Vec3& n) {
+  double sum = 0.0;
+  for (const Vec3& x : c.polygon) sum += x.dot(n);
+  return c.polygon.empty() ? 0.0 : sum / static_cast<double>(c.polygon.size());
+}
+
 /// Whether a and b overlap, seen along `frame`'s normal, by more than a hundredth of the smaller
 /// of the two (slivers along shared edges of noisy geometry are not an overlap).
 bool overlap_along(const ContactInterface& a, const ContactInterface& b, const ContactInterface& frame) {
@@ -48,18 +55,21 @@ bool overlap_along(const ContactInterface& a, const ContactInterface& b, const C
 int block_between_from(const model::Model& m, const std::vector<ContactInterface>& all,
                        const std::vector<std::vector<int>>& of_block,
                        const std::map<std::pair<int, int>, std::vector<int>>& of_pair, int ab, int a, int b,
-                       double cos_angle) {
+                       double gap, double cos_angle) {
   const ContactInterface& joint = all[ab];
   const Vec3 n = normal_out_of(joint, a);
+  const double level = height_along(joint, n), apart = 0.25 * gap;
   for (const int as : of_block[a]) {
     const int s = other_block(all[as], a);
     if (as == ab || s == b || normal_out_of(all[as], a).dot(n) < cos_angle) continue;
-    if (!overlap_along(all[as], joint, joint)) continue;
+    if (level - height_along(all[as], n) < apart || !overlap_along(all[as], joint, joint)) continue;
     if (m.blocks[s].is_support() && m.blocks[b].is_support()) return s;
     const auto sb = of_pair.find(std::minmax(s, b));
     if (sb == of_pair.end()) continue;
     for (const int k : sb->second) {
-      if (normal_out_of(all[k], s).dot(n) >= cos_angle && overlap_along(all[k], joint, joint)) return s;
+      if (normal_out_of(all[k], s).dot(n) >= cos_angle && height_along(all[k], n) - level >= apart &&
+          overlap_along(all[k], joint, joint))
+        return s;
     }
   }
   return -1;
@@ -69,11 +79,12 @@ int block_between_from(const model::Model& m, const std::vector<ContactInterface
 /// side that is not a support must be A).
 int block_between(const model::Model& m, const std::vector<ContactInterface>& all,
                   const std::vector<std::vector<int>>& of_block,
-                  const std::map<std::pair<int, int>, std::vector<int>>& of_pair, int ab, double cos_angle) {
+                  const std::map<std::pair<int, int>, std::vector<int>>& of_pair, int ab, double gap,
+                  double cos_angle) {
   const ContactInterface& joint = all[ab];
   for (const bool reversed : {false, true}) {
     const int a = reversed ? joint.block_b : joint.block_a, b = reversed ? joint.block_a : joint.block_b;
-    const int s = block_between_from(m, all, of_block, of_pair, ab, a, b, cos_angle);
+    const int s = block_between_from(m, all, of_block, of_pair, ab, a, b, gap, cos_angle);
     if (s >= 0) return s;
   }
   return -1;
@@ -82,7 +93,8 @@ int block_between(const model::Model& m, const std::vector<ContactInterface>& al
 }  // namespace
 
 std::vector<int> blocks_between(const model::Model& m, const std::vector<ContactInterface>& detected,
-                                const std::vector<bool>& apart, double angle_degrees) {
+                                const std::vector<bool>& apart, const std::vector<double>& gaps,
+                                double angle_degrees) {
   std::vector<ContactInterface> all = m.interfaces;
   const std::size_t given = all.size();
   all.insert(all.end(), detected.begin(), detected.end());
@@ -96,7 +108,7 @@ std::vector<int> blocks_between(const model::Model& m, const std::vector<Contact
   const double cos_angle = std::cos(model::radians(angle_degrees));
   std::vector<int> between(detected.size(), -1);
   for (std::size_t k = 0; k < detected.size(); ++k) {
-    if (apart[k]) between[k] = block_between(m, all, of_block, of_pair, static_cast<int>(given + k), cos_angle);
+    if (apart[k]) between[k] = block_between(m, all, of_block, of_pair, static_cast<int>(given + k), gaps[k], cos_angle);
   }
   return between;
 }

@@ -12,12 +12,15 @@
 
 namespace rbla::geometry {
 
-/// For each of `detected` whose faces are `apart` (nowhere touching), the block lying between its
-/// two blocks A and B, or -1: a block S with joints to A and to B (among the model's own
-/// interfaces and `detected`) that face as A-B does within `angle_degrees` and overlap it, seen
-/// along its normal, by more than 1 % of the smaller. Supports form no joints with each other, so
-/// when S and B are both supports S's joint with A suffices (a block on a plinth, both fixed).
+/// For each of `detected` whose faces are `apart` (nowhere touching; `gaps` the farthest apart they
+/// are, m), the block lying between its two blocks A and B, or -1: a block S with joints to A and
+/// to B (among the model's own interfaces and `detected`) that face as A-B does within
+/// `angle_degrees`, overlap it, seen along its normal, by more than 1 % of the smaller, and lie on
+/// either side of its plane, a quarter of its gap or more from it (S is in the gap, not beside B
+/// at B's level). Supports form no joints with each other, so when S and B are both supports S's
+/// joint with A suffices (a block on a plinth, both fixed).
 std::vector<int> blocks_between(const model::Model& m, const std::vector<model::ContactInterface>& detected,
-                                const std::vector<bool>& apart, double angle_degrees);
+                                const std::vector<bool>& apart, const std::vector<double>& gaps,
+                                double angle_degrees);
 
 }  // namespace rbla::geometry
