@@ -1,7 +1,6 @@
 #include "geometry/interface_detection.hpp"
 
 #include "geometry/joints_through_blocks.hpp"
-
 #include "geometry/polygon2d.hpp"
 #include "geometry/polyhedron.hpp"
 #include "geometry/sweep.hpp"

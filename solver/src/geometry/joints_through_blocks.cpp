@@ -49,26 +49,55 @@ bool overlap_along(const ContactInterface& a, const ContactInterface& b, const C
   return common > 0.01 * smaller;
 }
 
+/// The model's own contacts and the detected ones, by block and by block pair (pointers: the
+/// contacts are not copied).
+class ContactGraph {
+ public:
+  ContactGraph(std::size_t blocks, const std::vector<ContactInterface>& given,
+               const std::vector<ContactInterface>& detected)
+      : of_block_(blocks) {
+    for (const auto* list : {&given, &detected}) {
+      for (const ContactInterface& c : *list) add(c);
+    }
+  }
+  const ContactInterface& operator[](int k) const { return *all_[k]; }
+  const std::vector<int>& of_block(int block) const { return of_block_[block]; }
+  const std::vector<int>* of_pair(int a, int b) const {
+    const auto found = of_pair_.find(std::minmax(a, b));
+    return found == of_pair_.end() ? nullptr : &found->second;
+  }
+
+ private:
+  void add(const ContactInterface& c) {
+    const int k = static_cast<int>(all_.size());
+    all_.push_back(&c);
+    of_block_[c.block_a].push_back(k);
+    of_block_[c.block_b].push_back(k);
+    of_pair_[std::minmax(c.block_a, c.block_b)].push_back(k);
+  }
+  std::vector<const ContactInterface*> all_;
+  std::vector<std::vector<int>> of_block_;
+  std::map<std::pair<int, int>, std::vector<int>> of_pair_;
+};
+
 /// A block S between A and B under joint ab, seen from A: S touches A with a contact facing as ab
-/// does and overlapping it, and touches B the same way (or S and B are both supports). -1 when
-/// there is none.
-int block_between_from(const model::Model& m, const std::vector<ContactInterface>& all,
-                       const std::vector<std::vector<int>>& of_block,
-                       const std::map<std::pair<int, int>, std::vector<int>>& of_pair, int ab, int a, int b,
-                       double gap, double cos_angle) {
-  const ContactInterface& joint = all[ab];
+/// does, overlapping it and a quarter of its gap or more nearer A than its plane, and touches B the
+/// same way from the other side (or S and B are both supports). -1 when there is none.
+int block_between_from(const model::Model& m, const ContactGraph& graph, int ab, int a, int b, double gap,
+                       double cos_angle) {
+  const ContactInterface& joint = graph[ab];
   const Vec3 n = normal_out_of(joint, a);
   const double level = height_along(joint, n), apart = 0.25 * gap;
-  for (const int as : of_block[a]) {
-    const int s = other_block(all[as], a);
-    if (as == ab || s == b || normal_out_of(all[as], a).dot(n) < cos_angle) continue;
-    if (level - height_along(all[as], n) < apart || !overlap_along(all[as], joint, joint)) continue;
+  for (const int as : graph.of_block(a)) {
+    const int s = other_block(graph[as], a);
+    if (as == ab || s == b || normal_out_of(graph[as], a).dot(n) < cos_angle) continue;
+    if (level - height_along(graph[as], n) < apart || !overlap_along(graph[as], joint, joint)) continue;
     if (m.blocks[s].is_support() && m.blocks[b].is_support()) return s;
-    const auto sb = of_pair.find(std::minmax(s, b));
-    if (sb == of_pair.end()) continue;
-    for (const int k : sb->second) {
-      if (normal_out_of(all[k], s).dot(n) >= cos_angle && height_along(all[k], n) - level >= apart &&
-          overlap_along(all[k], joint, joint))
+    const std::vector<int>* sb = graph.of_pair(s, b);
+    if (!sb) continue;
+    for (const int k : *sb) {
+      if (normal_out_of(graph[k], s).dot(n) >= cos_angle && height_along(graph[k], n) - level >= apart &&
+          overlap_along(graph[k], joint, joint))
         return s;
     }
   }
@@ -77,14 +106,11 @@ int block_between_from(const model::Model& m, const std::vector<ContactInterface
 
 /// Either way round: A's joints are searched for S (supports form no joints with each other, so the
 /// side that is not a support must be A).
-int block_between(const model::Model& m, const std::vector<ContactInterface>& all,
-                  const std::vector<std::vector<int>>& of_block,
-                  const std::map<std::pair<int, int>, std::vector<int>>& of_pair, int ab, double gap,
-                  double cos_angle) {
-  const ContactInterface& joint = all[ab];
+int block_between(const model::Model& m, const ContactGraph& graph, int ab, double gap, double cos_angle) {
+  const ContactInterface& joint = graph[ab];
   for (const bool reversed : {false, true}) {
     const int a = reversed ? joint.block_b : joint.block_a, b = reversed ? joint.block_a : joint.block_b;
-    const int s = block_between_from(m, all, of_block, of_pair, ab, a, b, gap, cos_angle);
+    const int s = block_between_from(m, graph, ab, a, b, gap, cos_angle);
     if (s >= 0) return s;
   }
   return -1;
@@ -95,20 +121,12 @@ int block_between(const model::Model& m, const std::vector<ContactInterface>& al
 std::vector<int> blocks_between(const model::Model& m, const std::vector<ContactInterface>& detected,
                                 const std::vector<bool>& apart, const std::vector<double>& gaps,
                                 double angle_degrees) {
-  std::vector<ContactInterface> all = m.interfaces;
-  const std::size_t given = all.size();
-  all.insert(all.end(), detected.begin(), detected.end());
-  std::vector<std::vector<int>> of_block(m.blocks.size());
-  std::map<std::pair<int, int>, std::vector<int>> of_pair;
-  for (int k = 0; k < static_cast<int>(all.size()); ++k) {
-    of_block[all[k].block_a].push_back(k);
-    of_block[all[k].block_b].push_back(k);
-    of_pair[std::minmax(all[k].block_a, all[k].block_b)].push_back(k);
-  }
+  const ContactGraph graph(m.blocks.size(), m.interfaces, detected);
+  const int given = static_cast<int>(m.interfaces.size());
   const double cos_angle = std::cos(model::radians(angle_degrees));
   std::vector<int> between(detected.size(), -1);
   for (std::size_t k = 0; k < detected.size(); ++k) {
-    if (apart[k]) between[k] = block_between(m, all, of_block, of_pair, static_cast<int>(given + k), gaps[k], cos_angle);
+    if (apart[k]) between[k] = block_between(m, graph, given + static_cast<int>(k), gaps[k], cos_angle);
   }
   return between;
 }
