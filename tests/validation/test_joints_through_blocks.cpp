@@ -61,13 +61,14 @@ TEST(JointsThroughBlocks, ABlockAcrossTwoSupportsKeepsBothJoints) {
   EXPECT_FALSE(has_warning(loaded.model.warnings, "joints_through_blocks"));
 }
 
-// Slabs 1 cm thick under a joint tolerance of 30 cm (3 % of their 10 m faces): each slab touches
+// Slabs 7 mm thick under a joint tolerance of 30 cm (3 % of their 10 m faces): each slab touches
 // only its neighbours. Without the two rules, the bottom of one slab and the top of the one above
-// (back to back across a slab) and every pair of slabs with slabs between them were joined too.
+// (back to back across a slab) and every pair of slabs with slabs between them (at most 28 mm
+// apart: a gap the same all over closes up to 30 mm) were joined too.
 TEST(JointsThroughBlocks, ThinSlabsStackedJoinOnlyTheirNeighbours) {
   json blocks = json::array({box_block("base", -1.0, -1.0, -0.5, 11.0, 2.0, 0.0, "fixed")});
   for (int k = 0; k < 5; ++k) {
-    blocks.push_back(box_block("S" + std::to_string(k), 0.0, 0.0, 0.01 * k, 10.0, 1.0, 0.01 * (k + 1)));
+    blocks.push_back(box_block("S" + std::to_string(k), 0.0, 0.0, 0.007 * k, 10.0, 1.0, 0.007 * (k + 1)));
   }
   Case s;
   const auto loaded = rbla::io::load_model_text(finish(blocks, s).dump());
