@@ -73,13 +73,19 @@ double total_area(const Model& m) {
 
 // The distance tolerance of a joint is 3 % of the diameter of its smaller face (the schema's
 // default): sqrt(2) m for a 1 m square, so 42.4 mm; 4.24 mm for a 0.1 m square. The same block
-// pairs give the same answer whatever else the model holds.
+// pairs give the same answer whatever else the model holds. The large blocks are tilted onto the
+// base (one edge on it): a gap the same all over closes only up to 30 mm (UniformGaps).
 TEST(DetectionTolerance, FollowsEachJointNotTheModel) {
   const double large = 0.03 * std::sqrt(2.0), small = 0.1 * large;
+  auto tilted = [](const std::string& id, double x0, double lift) {
+    json block = box_block(id, x0, 0, 0, x0 + 1, 1, 1);
+    block["vertices"][1][2] = block["vertices"][2][2] = lift;  // the x = x0 + 1 edge lifted
+    return block;
+  };
   for (const bool far_block : {false, true}) {
     json blocks = json::array({box_block("base", -1, -1, -0.5, 6, 2, 0, "fixed"),
-                               box_block("big_in", 0, 0, 0.95 * large, 1, 1, 1),
-                               box_block("big_out", 2, 0, 1.1 * large, 3, 1, 1),
+                               tilted("big_in", 0, 0.95 * large),
+                               tilted("big_out", 2, 1.1 * large),
                                box_block("small_in", 4, 0, 0.95 * small, 4.1, 0.1, 0.1),
                                box_block("small_out", 5, 0, 1.1 * small, 5.1, 0.1, 0.1)});
     // A block 200 m away: a tolerance relative to the model (1e-4 of 200 m = 20 mm) would now
@@ -90,7 +96,8 @@ TEST(DetectionTolerance, FollowsEachJointNotTheModel) {
     for (const auto& c : m.interfaces) touching.insert(m.blocks[c.block_b].id), touching.insert(m.blocks[c.block_a].id);
     EXPECT_EQ(touching, (std::set<std::string>{"base", "big_in", "small_in"})) << "far block: " << far_block;
     EXPECT_TRUE(m.detection_summary.per_joint);
-    EXPECT_NEAR(m.detection_summary.distance_tolerances.max, large, 1e-12);
+    // big_in's tilted face is a little larger than the square: its diameter sqrt(2 + lift^2).
+    EXPECT_NEAR(m.detection_summary.distance_tolerances.max, 0.03 * std::sqrt(2.0 + std::pow(0.95 * large, 2)), 1e-12);
     EXPECT_NEAR(m.detection_summary.distance_tolerances.min, small, 1e-12);
   }
 }
@@ -113,7 +120,8 @@ TEST(DetectionTolerance, AFixedToleranceReplacesThePerJointOnes) {
 }
 
 TEST(NearMisses, NameTheBlocksFacesDistanceAndAngle) {
-  // A 1 m cube 60 mm above the base (tolerance 42.4 mm), one 200 mm above (beyond three times it),
+  // A 1 m cube 60 mm above the base (a gap the same all over: 30 mm closes), one 200 mm above
+  // (beyond three times the joint's tolerance of 42.4 mm),
   // and a 0.4 x 1 m block tilted by 11 degrees about a bottom edge: beyond the 10 degree angle
   // tolerance, and 78 mm off the base at the other edge (its tolerance: 3 % of sqrt(1.16) m =
   // 32.3 mm).
@@ -132,7 +140,7 @@ TEST(NearMisses, NameTheBlocksFacesDistanceAndAngle) {
   EXPECT_EQ(gap.face_a, 1);  // the base's top
   EXPECT_EQ(gap.face_b, 0);  // the cube's bottom
   EXPECT_NEAR(gap.distance, 0.06, 1e-12);
-  EXPECT_NEAR(gap.distance_tolerance, 0.03 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(gap.distance_tolerance, 0.03, 1e-12);  // the limit of a gap the same all over
   EXPECT_NEAR(gap.angle_degrees, 0.0, 1e-9);
   EXPECT_NEAR(gap.overlap_area, 1.0, 1e-12);
   const auto& tilted = m.near_misses[1];
@@ -170,7 +178,7 @@ TEST(NearMisses, AreInTheResultJsonInTheModelsUnits) {
   EXPECT_EQ(miss["blocks"], json::array({"base", "gap"}));
   EXPECT_EQ(miss["faces"], json::array({1, 0}));
   EXPECT_NEAR(miss["distance"].get<double>(), 60.0, 1e-9);
-  EXPECT_NEAR(miss["distance_tolerance"].get<double>(), 30.0 * std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(miss["distance_tolerance"].get<double>(), 30.0, 1e-9);  // a gap the same all over
   EXPECT_NEAR(miss["overlap_area"].get<double>(), 1e6, 1e-3);
   // The block "on" is 0.4 x 1 m at its base: its joint's tolerance is 3 % of sqrt(1.16) m.
   EXPECT_NEAR(d["tolerances"]["distance_used"]["max"].get<double>(), 30.0 * std::sqrt(1.16), 1e-9);
