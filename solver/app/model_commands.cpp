@@ -32,6 +32,7 @@ void print_detection(const model::Model& m, std::ostream& out) {
       line << " (" << model::length_text(s.distance_tolerances.min, m.units) << " to "
            << model::length_text(s.distance_tolerances.max, m.units) << " here)";
     }
+    line << ", faces at most " << model::length_text(s.clearance_limit, m.units) << " apart at their nearest";
   } else {
     line << model::length_text(s.fixed_distance, m.units) << " for every joint (set in the model)";
   }

@@ -110,31 +110,31 @@ TEST(InterfaceDetection, ATriangleSoupRoundedApartGivesTheSameInterfaces) {
 }
 
 // A block drawn clear of two walls on its sides: glued to them it is clamped and carries any
-// horizontal load, so a gap above half the joint tolerance (3 % of the 2.2 m side face: 6.7 cm)
-// is said, with the widest; a millimetre of CAD gap is not. The walls lean away from the block
-// (touching it at the foot, 5 cm clear at the top): a gap the same all over closes only up to
-// 3 cm (UniformGaps), a tilted one up to the tolerance.
+// horizontal load, so a gap above half the joint tolerance (3 % of the block's 0.6 x 1 m side
+// face: 35 mm) is said, with the widest; a millimetre of CAD gap is not. The walls lean away from
+// the block, touching it at its foot and 25 mm clear at its top: walls parallel to it and clear of
+// it all the way up are held apart by the 30 mm clearance limit (Clearance tests).
 TEST(InterfaceDetection, AJointClosedAcrossAWideGapIsSaid) {
   auto channel = [](double gap) {
     json left = box_block("wall_left", -1, -1, 0, 2, 0, 2, "fixed");
     json right = box_block("wall_right", -1, 1, 0, 2, 2, 2, "fixed");
-    for (int v : {4, 5, 6, 7}) {  // the top vertices
-      left["vertices"][v][1] = left["vertices"][v][1].get<double>() - gap;
-      right["vertices"][v][1] = right["vertices"][v][1].get<double>() + gap;
+    for (int v : {4, 5, 6, 7}) {  // the top vertices, 2 m up: twice the gap at the block's top
+      left["vertices"][v][1] = left["vertices"][v][1].get<double>() - 2.0 * gap;
+      right["vertices"][v][1] = right["vertices"][v][1].get<double>() + 2.0 * gap;
     }
     return load(model_with(json::array({box_block("base", -1, -1, -0.5, 2, 2, 0, "fixed"), std::move(left),
-                                        std::move(right), box_block("B", 0, 0, 0, 0.6, 1, 2)})));
+                                        std::move(right), box_block("B", 0, 0, 0, 0.6, 1, 1)})));
   };
   auto wide_gap_warning = [](const Model& m) {
     return std::find_if(m.warnings.begin(), m.warnings.end(),
                         [](const auto& w) { return w.code == "joints_closed_across_gaps"; });
   };
-  const Model wide = channel(0.05);
+  const Model wide = channel(0.025);
   ASSERT_EQ(wide.interfaces.size(), 3u) << "the bed joint and both side joints";
   const auto said = wide_gap_warning(wide);
   ASSERT_NE(said, wide.warnings.end());
   EXPECT_NE(said->message.find("2 detected joints"), std::string::npos) << said->message;
-  EXPECT_NEAR(said->magnitude, 0.05, 1e-3);  // measured along the joint's mid-plane normal
+  EXPECT_NEAR(said->magnitude, 0.025, 1e-4);  // measured along the joint's mid-plane normal
   EXPECT_EQ(wide.detection_summary.wide_gaps.joints, 2u);
   const Model narrow = channel(0.001);
   EXPECT_EQ(narrow.interfaces.size(), 3u);

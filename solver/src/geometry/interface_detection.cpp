@@ -46,6 +46,20 @@ PatchLimits DetectionTolerances::patch_limits() const {
   return limits;
 }
 
+/// A joint's tolerance (3 % of the faces' diameter) allows for tilt and warp: a tilted face departs
+/// from its neighbour's plane in proportion to its size. Faces that come nowhere near each other
+/// are no joint however they are tilted: a drawn mortar layer or modelling slack is a few
+/// millimetres to a couple of centimetres whatever the faces' size; more is a cavity or a movement
+/// joint. So a joint's faces must also come within this many metres of each other somewhere (the
+/// thickest mortar joint we expect drawn as a gap; its clearance). Without it two 8 x 3 m leaves of
+/// a cavity wall 12 cm apart (tolerance 26 cm) were one wall, alpha 0.0545 against 0.0333 for each
+/// leaf, without a warning, and so were leaves 5 cm apart at the foot and 11 cm at the top (the
+/// review of the first version, which limited only gaps the same all over). Only with the
+/// per-joint tolerance: a distance tolerance set in the model is kept; a joint_tolerance set in it
+/// scales this limit too (at 0.1 instead of 0.03, 100 mm). Faces that overlap or cross anywhere
+/// have no clearance (an overlap is the overlap check's).
+constexpr double kClearanceLimit = 0.03;
+
 DetectionTolerances DetectionTolerances::of(const model::Model& model) {
   DetectionTolerances t;
   const model::DetectionSettings& s = model.detection;
@@ -53,6 +67,8 @@ DetectionTolerances DetectionTolerances::of(const model::Model& model) {
   t.joint_fraction = s.joint_tolerance;
   t.fixed_distance = t.per_joint ? 0.0 : model.distance_tolerance();
   t.angle_degrees = s.angle_tolerance_degrees;
+  t.clearance_limit = t.per_joint ? kClearanceLimit * s.joint_tolerance / model::DetectionSettings{}.joint_tolerance
+                                  : std::numeric_limits<double>::infinity();
   return t;
 }
 
@@ -192,24 +208,10 @@ double extent_along(const model::Block& block, const Vec3& n) {
 /// other by more than this fraction of the thinner block's thickness is no joint.
 constexpr double kBackToBackFraction = 0.5;
 
-/// A joint's tolerance (3 % of the faces' diameter) allows for tilt and warp: a tilted face departs
-/// from its neighbour's plane in proportion to its size. A gap that is the same all over the joint
-/// (the nearest the faces come more than kApartFraction of the farthest) is no tilt: it is a drawn
-/// mortar layer or modelling slack, a few millimetres to a couple of centimetres whatever the
-/// faces' size, or a real cavity. Such a gap closes only up to this many metres (the thickest
-/// mortar joint we expect drawn as a gap). Without it two 8 x 3 m leaves of a cavity wall 12 cm
-/// apart (tolerance 26 cm) were one wall, alpha 0.0545 against 0.0333 for each leaf, without a
-/// warning. Only with the per-joint tolerance: a distance tolerance set in the model is kept.
-constexpr double kUniformGapLimit = 0.03;
-
-/// A joint's faces are apart everywhere when the nearest they come is more than this fraction of the
-/// farthest: a shim, a layer or a cavity between parallel faces, give or take CAD noise.
-constexpr double kApartFraction = 0.5;
-
-/// The farthest a piece's faces may be apart and still form a joint.
-double gap_limit(const DetectionTolerances& tol, double tolerance, double nearest, double farthest) {
-  const bool uniform = nearest > kApartFraction * farthest;
-  return tol.per_joint && uniform ? std::min(tolerance, kUniformGapLimit) : tolerance;
+/// Whether a piece's clearance (the nearest its faces come, 0 where they overlap or cross) is too
+/// wide for a joint. The limit holds up to round-off: 1.03 - 1.0 is 0.030000000000000027.
+bool clearance_too_wide(const DetectionTolerances& tol, double clearance) {
+  return clearance > tol.clearance_limit * (1.0 + 1e-9);
 }
 
 /// 2 area / perimeter: the width of a strip, the radius of a disc (a measure of how narrow a face is).
@@ -293,6 +295,7 @@ struct Collector {
   std::vector<double> smallest_gaps;  ///< m, the nearest the two faces come over each joint
   double largest_gap_fraction = 0.0;
   model::WideGaps wide_gaps;
+  model::JointsTouchingInPart touching_in_part;
   std::size_t face_pairs_tested = 0;
 };
 
@@ -301,6 +304,49 @@ struct Collector {
 /// 13 %, a faceted generated dome 49.5 %), while a block drawn a few centimetres clear of a wall
 /// is glued to it at 80 % and clamped there.
 constexpr double kWideGapFraction = 0.5;
+
+/// The farthest two faces are apart over a piece, either way, and the nearest (0 where they overlap
+/// or cross): its gap and its clearance.
+struct PieceGaps {
+  double farthest = 0.0, clearance = 0.0;
+  double ahead = 0.0, behind = 0.0;  ///< m, the widest gap and the deepest overlap
+};
+PieceGaps gaps_over(const Polygon2& piece, const FacePatch& pa, const FacePatch& pb, const PairGeometry& g) {
+  PieceGaps out;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Point2& p : piece) {
+    const double gap = plane_height(pb, g, p) - plane_height(pa, g, p);  // > 0: b's face in front of a's
+    out.farthest = std::max(out.farthest, std::abs(gap));
+    nearest = std::min(nearest, gap);
+    out.behind = std::max(out.behind, -gap);
+    out.ahead = std::max(out.ahead, gap);
+  }
+  out.clearance = std::max(nearest, 0.0);
+  return out;
+}
+
+/// The part of a piece where its faces are at most `limit` apart. The gap between two planes is
+/// affine over the piece, so that part is the piece cut by one line: intersected with the
+/// half-plane gap <= limit, drawn as a convex polygon around the piece's bounding box.
+std::vector<Polygon2> within(const Polygon2& piece, const FacePatch& pa, const FacePatch& pb, const PairGeometry& g,
+                             double limit, double snap, double min_area) {
+  Point2 low = piece.front(), high = piece.front();
+  for (const Point2& p : piece) low = low.cwiseMin(p), high = high.cwiseMax(p);
+  const Point2 pad = (high - low) + Point2(1.0, 1.0) * 1e-3 * (high - low).norm();
+  low -= pad;
+  high += pad;
+  const auto excess = [&](const Point2& p) { return plane_height(pb, g, p) - plane_height(pa, g, p) - limit; };
+  const Polygon2 box{low, Point2(high.x(), low.y()), high, Point2(low.x(), high.y())};
+  Polygon2 half;  // Sutherland-Hodgman against excess <= 0 (the box is convex)
+  for (std::size_t i = 0; i < box.size(); ++i) {
+    const Point2 &p = box[i], &q = box[(i + 1) % box.size()];
+    const double ep = excess(p), eq = excess(q);
+    if (ep <= 0.0) half.push_back(p);
+    if ((ep < 0.0) != (eq < 0.0) && ep != eq) half.push_back(p + (q - p) * (ep / (ep - eq)));
+  }
+  if (half.size() < 3) return {};
+  return intersect(piece, half, snap, min_area);
+}
 
 /// What comparing two patches gave: accepted pieces go straight to the collector.
 struct PairOutcome {
@@ -339,33 +385,42 @@ PairOutcome compare(const model::Model& m, int a, int b, const FacePatch& pa, co
   const double thinner = std::min(extent_along(m.blocks[a], g.normal), extent_along(m.blocks[b], g.normal));
   for (const Polygon2& piece : pieces) {
     if (is_sliver(piece, g.tolerance, std::min(pa.area, pb.area), narrower)) continue;
-    double distance = 0.0, behind = 0.0, nearest = std::numeric_limits<double>::infinity();
-    for (const Point2& p : piece) {
-      const double gap = plane_height(pb, g, p) - plane_height(pa, g, p);  // > 0: b's face in front of a's
-      distance = std::max(distance, std::abs(gap));
-      nearest = std::min(nearest, std::abs(gap));
-      behind = std::max(behind, -gap);
-    }
-    if (distance > range || behind > kBackToBackFraction * thinner) continue;
+    const PieceGaps gaps = gaps_over(piece, pa, pb, g);
+    const double distance = gaps.farthest, clearance = gaps.clearance;
+    if (distance > range || gaps.behind > kBackToBackFraction * thinner) continue;
     result.overlapping = true;
-    const double limit = gap_limit(tol, g.tolerance, nearest, distance);
-    if (g.angle_degrees <= tol.angle_degrees && distance <= limit) {
-      out.interfaces.push_back(make_interface(a, b, pa, pb, g, piece, m.default_friction));
-      out.gaps.push_back(distance);
-      out.smallest_gaps.push_back(nearest);
-      out.angles.push_back(g.angle_degrees);
-      out.tolerances.push_back(g.tolerance);
-      result.accepted = true;
+    const bool too_wide = clearance_too_wide(tol, clearance);
+    if (g.angle_degrees <= tol.angle_degrees && distance <= g.tolerance && !too_wide) {
+      // A face tilted onto its partner touches where the two are within the clearance limit, not
+      // all over: a leaf leaning onto another, 12 cm clear at its foot, bore on its whole face.
+      const bool in_part = gaps.ahead > tol.clearance_limit * (1.0 + 1e-9);
+      if (in_part && out.touching_in_part.joints++ == 0) out.touching_in_part = {1, gaps.ahead, a, b};
+      const std::vector<Polygon2> parts = in_part
+                                              ? within(piece, pa, pb, g, tol.clearance_limit, snap, min_area)
+                                              : std::vector<Polygon2>{piece};
+      for (const Polygon2& part : parts) {
+        if (is_sliver(part, g.tolerance, std::min(pa.area, pb.area), narrower)) continue;
+        const PieceGaps part_gaps = gaps_over(part, pa, pb, g);
+        out.interfaces.push_back(make_interface(a, b, pa, pb, g, part, m.default_friction));
+        out.gaps.push_back(part_gaps.farthest);
+        out.smallest_gaps.push_back(part_gaps.clearance);
+        out.angles.push_back(g.angle_degrees);
+        out.tolerances.push_back(g.tolerance);
+        result.accepted = true;
+      }
     } else if (distance < result.closest.distance) {
       model::NearMiss& miss = result.closest;
       miss.block_a = a;
       miss.block_b = b;
       miss.face_a = pa.faces.front();
       miss.face_b = pb.faces.front();
-      miss.distance = distance;
+      // The farther of the two limits from accepting the pair is reported: a joint tolerance raised
+      // to the farthest distance does not close a clearance over the limit.
+      const bool by_clearance = too_wide && clearance * g.tolerance >= distance * tol.clearance_limit;
+      miss.distance = by_clearance ? clearance : distance;
       miss.angle_degrees = g.angle_degrees;
       miss.overlap_area = std::abs(signed_area(piece));
-      miss.distance_tolerance = limit;
+      miss.distance_tolerance = by_clearance ? tol.clearance_limit : g.tolerance;
     }
   }
   return result;
@@ -400,6 +455,10 @@ void match_patches(const model::Model& m, int a, int b, const FacePatch& pa, con
   }
   if (!best.accepted && best.overlapping && std::isfinite(best.closest.distance)) out.near_misses.push_back(best.closest);
 }
+
+/// A joint's faces are apart everywhere when the nearest they come is more than this fraction of the
+/// farthest: a shim or a layer between parallel faces, give or take CAD noise.
+constexpr double kApartFraction = 0.5;
 
 /// Drops the joints through a third block (geometry/joints_through_blocks.hpp) with their gaps,
 /// angles and tolerances, and records the first.
@@ -436,15 +495,20 @@ void drop_joints_through_blocks(const model::Model& m, const DetectionTolerances
   c.smallest_gaps.resize(kept);
 }
 
-/// The largest gap over its tolerance, and the joints accepted across more than kWideGapFraction.
-void tally_gaps(Collector& c) {
+/// The largest gap over its tolerance, and the joints accepted across a wide gap: more than
+/// kWideGapFraction of the tolerance, or a clearance (the nearest the faces come) of more than
+/// kWideGapFraction of its limit (15 mm at the defaults: a 25 mm gap beside a wall, a narrow
+/// cavity, or a thick mortar joint drawn as a gap; the review of the clearance limit).
+void tally_gaps(Collector& c, const DetectionTolerances& tol) {
   model::WideGaps& wide = c.wide_gaps;
   for (std::size_t k = 0; k < c.interfaces.size(); ++k) {
-    const double gap = c.gaps[k], tolerance = c.tolerances[k];
+    const double gap = c.gaps[k], tolerance = c.tolerances[k], nearest = c.smallest_gaps[k];
     if (tolerance > 0.0) c.largest_gap_fraction = std::max(c.largest_gap_fraction, gap / tolerance);
-    if (gap > kWideGapFraction * tolerance) {
+    if (gap > kWideGapFraction * tolerance || nearest > kWideGapFraction * tol.clearance_limit) {
       ++wide.joints;
-      if (gap > wide.widest) wide = {wide.joints, gap, tolerance, c.interfaces[k].block_a, c.interfaces[k].block_b};
+      if (gap > wide.widest) {
+        wide = {wide.joints, gap, tolerance, nearest, c.interfaces[k].block_a, c.interfaces[k].block_b};
+      }
     }
   }
 }
@@ -455,6 +519,7 @@ model::DetectionSummary summarise(Collector& c, const DetectionTolerances& tol, 
   s.ran = true;
   s.per_joint = tol.per_joint;
   s.joint_tolerance = tol.joint_fraction;
+  s.clearance_limit = tol.clearance_limit;
   s.fixed_distance = tol.fixed_distance;
   s.angle_tolerance_degrees = tol.angle_degrees;
   s.distance_tolerances = spread_of(c.tolerances);
@@ -462,6 +527,7 @@ model::DetectionSummary summarise(Collector& c, const DetectionTolerances& tol, 
   s.angles = spread_of(c.angles);
   s.largest_gap_fraction = c.largest_gap_fraction;
   s.wide_gaps = c.wide_gaps;
+  s.touching_in_part = c.touching_in_part;
   s.candidate_block_pairs = candidates;
   s.face_pairs_tested = c.face_pairs_tested;
   s.merged_faces = merged;
@@ -492,7 +558,7 @@ DetectionOutcome detect_interfaces(const model::Model& m, const std::vector<std:
   }
   model::JointsThroughBlocks through;
   drop_joints_through_blocks(m, tol, collected, through);
-  tally_gaps(collected);
+  tally_gaps(collected, tol);
   DetectionOutcome outcome;
   outcome.summary = summarise(collected, tol, candidates.size(), merged);
   outcome.summary.through_blocks = through;

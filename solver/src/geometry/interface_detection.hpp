@@ -23,6 +23,9 @@ struct DetectionTolerances {
   double joint_fraction = 0.0;  ///< of the smaller face's diameter (per_joint)
   double fixed_distance = 0.0;  ///< m, for every joint (!per_joint)
   double angle_degrees = 0.0;
+  /// m, the widest clearance (the nearest a joint's faces come) that still closes (per_joint):
+  /// 30 mm at the default joint_fraction, in proportion to it otherwise.
+  double clearance_limit = 0.0;
   /// The distance tolerance (m) of a joint between faces of diameters size_a and size_b.
   double distance(double size_a, double size_b) const;
   /// The limits for merging split faces of one block, consistent with the joint tolerances.

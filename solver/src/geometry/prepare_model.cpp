@@ -356,12 +356,14 @@ void warn_about_wide_gaps(model::Model& m) {
   m.warnings.push_back(
       {"joints_closed_across_gaps",
        std::to_string(w.joints) +
-           (w.joints == 1 ? " detected joint was accepted across a gap above half its tolerance"
-                          : " detected joints were accepted across gaps above half their tolerance") +
-           ", the widest " + format(w.widest / m.units.length_to_m) + " " + m.units.length_name + " between blocks '" +
-           m.blocks[w.block_a].id + "' and '" + m.blocks[w.block_b].id + "' (" + share +
-           " % of its tolerance): such joints are analysed as touching. A gap that wide may be a real opening (a "
-           "block drawn clear of a wall would be held by it); check them, or lower detection.joint_tolerance",
+           (w.joints == 1 ? " detected joint was accepted across a wide gap"
+                          : " detected joints were accepted across wide gaps") +
+           " (above half the joint's tolerance, or faces more than half the clearance limit apart where they come "
+           "nearest), the widest " + model::length_text(w.widest, m.units) + " between blocks '" + m.blocks[w.block_a].id + "' and '" +
+           m.blocks[w.block_b].id + "' (" + share + " % of its tolerance, " + model::length_text(w.nearest, m.units) +
+           " at the nearest): such joints are analysed as touching. A gap that wide may be a real opening (a "
+           "cavity, a movement joint, a block drawn clear of a wall would be held by it); check them, or lower "
+           "detection.joint_tolerance",
        "/detection/joint_tolerance", w.widest});
 }
 
@@ -376,6 +378,21 @@ void warn_about_joints_through_blocks(model::Model& m) {
            m.blocks[t.block_a].id + "' and '" + m.blocks[t.block_b].id + "' are held apart by '" +
            m.blocks[t.between].id + "'): the gap between them is within the joint tolerance, but it is filled",
        "/blocks/" + std::to_string(t.between)});
+}
+
+/// Joints cut to the part where their faces are within the clearance limit: said once, with the first.
+void warn_about_joints_touching_in_part(model::Model& m) {
+  const model::JointsTouchingInPart& t = m.detection_summary.touching_in_part;
+  if (t.joints == 0) return;
+  m.warnings.push_back(
+      {"joints_touching_in_part",
+       (t.joints == 1 ? std::string("a detected joint touches") : std::to_string(t.joints) + " detected joints touch") +
+           " over part of the faces' overlap only, where they are within " +
+           model::length_text(m.detection_summary.clearance_limit, m.units) +
+           " of each other (the clearance limit); elsewhere they are further apart, up to " +
+           model::length_text(t.farthest, m.units) + " between blocks '" + m.blocks[t.block_a].id + "' and '" +
+           m.blocks[t.block_b].id + "' (a face tilted onto its partner): only that part is a contact",
+       "/detection/joint_tolerance", t.farthest});
 }
 
 /// Interface detection over the block pairs the CAD gave no interface for; the interfaces found
@@ -403,6 +420,7 @@ void add_detected_interfaces(model::Model& m, PrepareReport& report) {
   report.detect_seconds = seconds_since(detect_start);
   report.detection_ran = true;
   warn_about_wide_gaps(m);
+  warn_about_joints_touching_in_part(m);
   warn_about_joints_through_blocks(m);
 }
 

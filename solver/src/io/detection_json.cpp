@@ -29,6 +29,7 @@ json detection_json(const model::Model& m) {
   json tolerances{{"rule", s.per_joint ? "per_joint" : "fixed"}, {"angle", s.angle_tolerance_degrees}};
   if (s.per_joint) {
     tolerances["joint_tolerance"] = s.joint_tolerance;
+    tolerances["clearance_limit"] = s.clearance_limit / l;
   } else {
     tolerances["distance"] = s.fixed_distance / l;
   }

@@ -86,7 +86,7 @@ json warning_summary_json(const std::vector<model::Warning>& warnings) {
 }
 
 json model_only_result(const model::Model& model, const model::StageTimings& timings, const std::string& source) {
-  json result{{"schema_version", "1.9.0"},
+  json result{{"schema_version", "1.10.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
               {"verdict", "Model read and checked; no analysis was run."},

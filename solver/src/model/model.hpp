@@ -181,6 +181,15 @@ struct WideGaps {
   std::size_t joints = 0;
   double widest = 0.0;     ///< m
   double tolerance = 0.0;  ///< m, the widest one's
+  double nearest = 0.0;    ///< m, the widest one's clearance (the nearest its faces come)
+  int block_a = -1, block_b = -1;
+};
+
+/// Detected joints whose faces are more than the clearance limit apart over part of their overlap
+/// (a face tilted onto its partner): only the part within it is a contact. The first one found.
+struct JointsTouchingInPart {
+  std::size_t joints = 0;
+  double farthest = 0.0;  ///< m, the first one's faces at their farthest
   int block_a = -1, block_b = -1;
 };
 
@@ -195,6 +204,7 @@ struct DetectionSummary {
   bool ran = false;
   bool per_joint = true;             ///< tolerances from each joint's size (else one fixed tolerance)
   double joint_tolerance = 0.0;      ///< fraction of the joint size (per_joint)
+  double clearance_limit = 0.0;      ///< m, the widest a joint's faces may be apart at their nearest (per_joint)
   double fixed_distance = 0.0;       ///< m (when !per_joint)
   double angle_tolerance_degrees = 0.0;
   Spread distance_tolerances;        ///< m, the distance tolerances the accepted joints were given
@@ -202,6 +212,7 @@ struct DetectionSummary {
   Spread angles;                     ///< degrees, deviation from opposite of each accepted joint
   double largest_gap_fraction = 0.0; ///< the largest gap of an accepted joint over its tolerance
   WideGaps wide_gaps;
+  JointsTouchingInPart touching_in_part;
   JointsThroughBlocks through_blocks;
   std::size_t candidate_block_pairs = 0;
   std::size_t face_pairs_tested = 0;
