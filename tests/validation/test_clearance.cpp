@@ -109,6 +109,24 @@ TEST(Clearance, ALeafLeaningOntoTheOtherBearsWhereTheyTouch) {
   EXPECT_LT(relative_error(alpha, 0.1242 / 9.018), 0.02);
 }
 
+// A 1 x 1 x 2 m block on a drawn bed 31 mm thick at its toe and 29 mm at its heel (or 35 and 25)
+// bears on its whole base, as on a mortar joint: alpha = b/h = 0.5, up to the bed's tilt of the
+// contact plane. The first cut, at 30 mm from touching rather than from the nearest, put it on
+// its heel half: alpha 1e-4 (the second review).
+TEST(Clearance, ABlockOnABedOfVaryingThicknessBearsOnItsWholeBase) {
+  for (const auto& [toe, heel] : {std::pair{0.031, 0.029}, std::pair{0.035, 0.025}}) {
+    json block = box_block("B", -0.5, 0.0, 0.0, 0.5, 1.0, 2.0);
+    block["vertices"][0][2] = block["vertices"][3][2] = heel;
+    block["vertices"][1][2] = block["vertices"][2][2] = toe;
+    Case s;
+    const auto loaded = load(finish(json::array({box_block("slab", -1.0, -1.0, -0.5, 1.0, 2.0, 0.0, "fixed"), block}), s));
+    ASSERT_EQ(loaded.model.interfaces.size(), 1u);
+    EXPECT_NEAR(loaded.model.interfaces[0].area, 1.0, 1e-3);
+    EXPECT_FALSE(warns(loaded.model, "joints_touching_in_part"));
+    EXPECT_LT(relative_error(alpha_of(rbla::analysis::analyse(loaded.model)), 0.5), 5e-3) << toe << " / " << heel;
+  }
+}
+
 // A wall drawn 35 mm into its slab overlaps it everywhere: no clearance, the overlap check's
 // business (a warning), and the wall tips about its toe, alpha = (t / 2) / (h / 2).
 TEST(Clearance, AWallDrawnIntoItsSlabIsNoGap) {

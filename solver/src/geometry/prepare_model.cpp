@@ -389,7 +389,7 @@ void warn_about_joints_touching_in_part(model::Model& m) {
        (t.joints == 1 ? std::string("a detected joint touches") : std::to_string(t.joints) + " detected joints touch") +
            " over part of the faces' overlap only, where they are within " +
            model::length_text(m.detection_summary.clearance_limit, m.units) +
-           " of each other (the clearance limit); elsewhere they are further apart, up to " +
+           " (the clearance limit) of the nearest they come; elsewhere they are further apart, up to " +
            model::length_text(t.farthest, m.units) + " between blocks '" + m.blocks[t.block_a].id + "' and '" +
            m.blocks[t.block_b].id + "' (a face tilted onto its partner): only that part is a contact",
        "/detection/joint_tolerance", t.farthest});
