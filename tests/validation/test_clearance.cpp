@@ -127,6 +127,27 @@ TEST(Clearance, ABlockOnABedOfVaryingThicknessBearsOnItsWholeBase) {
   }
 }
 
+// A 1 x 2 x 2 m block whose base rests on the slab at its toe (x = 0.5) and is 50 mm clear at its
+// heel bears on the 0.6 m where it is within 30 mm of the slab, whatever joint_tolerance accepts
+// the joint: pulled towards the heel it tips about the band's edge, 0.1 m behind its centroid
+// (alpha about 0.1). With the band scaled by joint_tolerance, alpha rose from 0.10 to 0.51 between
+// 0.03 and 0.05, with no warning at 0.05 (the third review).
+TEST(Clearance, TheBearingBandDoesNotFollowTheJointTolerance) {
+  json block = box_block("B", -0.5, 0.0, 0.0, 0.5, 2.0, 2.0);
+  block["vertices"][0][2] = block["vertices"][3][2] = 0.05;
+  Case s;
+  s.seismic_direction = json::array({-1.0, 0.0, 0.0});
+  json model = finish(json::array({box_block("slab", -1.0, -1.0, -0.5, 1.0, 3.0, 0.0, "fixed"), block}), s);
+  for (const double tolerance : {0.03, 0.05}) {
+    model["detection"] = {{"joint_tolerance", tolerance}};
+    const auto loaded = load(model);
+    ASSERT_EQ(loaded.model.interfaces.size(), 1u) << tolerance;
+    EXPECT_NEAR(loaded.model.interfaces[0].area, 2.0 * 0.6, 0.01) << tolerance;
+    EXPECT_TRUE(warns(loaded.model, "joints_touching_in_part")) << tolerance;
+    EXPECT_NEAR(alpha_of(rbla::analysis::analyse(loaded.model)), 0.1, 0.01) << tolerance;
+  }
+}
+
 // A wall drawn 35 mm into its slab overlaps it everywhere: no clearance, the overlap check's
 // business (a warning), and the wall tips about its toe, alpha = (t / 2) / (h / 2).
 TEST(Clearance, AWallDrawnIntoItsSlabIsNoGap) {

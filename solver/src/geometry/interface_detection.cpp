@@ -357,20 +357,26 @@ struct FacePair {
 
 /// What decides how an accepted piece becomes contacts.
 struct CutLimits {
-  double clearance_limit, snap, min_area;
+  double bearing_band, snap, min_area;  ///< bearing_band: m, see kBearingBand
   double smaller_face_area, narrower_face_width;
 };
 
+/// How far beyond the nearest a tilted joint's faces still bear on each other, m: the default
+/// clearance limit, whatever detection.joint_tolerance. The tolerance decides which faces form a
+/// joint; scaled with it, the band let a block resting on its toe over a bed 0 to 50 mm bear on
+/// its heel too, alpha rising 5-fold from joint_tolerance 0.03 to 0.05 (the third review).
+constexpr double kBearingBand = kClearanceLimit;
+
 /// Adds an accepted piece's contacts; false when nothing but slivers was left. A face tilted onto
-/// its partner bears where the two are within the clearance limit of the nearest they come (the
-/// piece cut along the line where the gap is clearance + limit), not all over: a leaf leaning onto
+/// its partner bears where the two are within kBearingBand of the nearest they come (the piece
+/// cut along the line where the gap is clearance + kBearingBand), not all over: a leaf leaning onto
 /// another, touching at its top edge and 12 cm clear at its foot, bore on its whole face (alpha
 /// 0.0345 against 0.01377). Measured from the nearest, not from touching: a block on a drawn bed
 /// 31 mm thick at its toe and 29 mm at its heel, cut at 30 mm, stood on its heel half (alpha 1e-4
 /// against b/h = 0.5; the second review).
 bool add_contacts(const model::Model& m, const FacePair& f, const Polygon2& piece, const PieceGaps& gaps,
                   const CutLimits& limits, Collector& out) {
-  const double cut = gaps.clearance + limits.clearance_limit;
+  const double cut = gaps.clearance + limits.bearing_band;
   const std::vector<Polygon2> parts = gaps.ahead > cut ? within(piece, f.pa, f.pb, f.g, cut, limits.snap, limits.min_area)
                                                        : std::vector<Polygon2>{piece};
   double kept = 0.0;
@@ -386,7 +392,7 @@ bool add_contacts(const model::Model& m, const FacePair& f, const Polygon2& piec
   }
   // Counted only when the cut took something off (a vertex a hair beyond the line snaps back).
   if (kept > 0.0 && kept < (1.0 - 1e-6) * std::abs(signed_area(piece)) && out.touching_in_part.joints++ == 0) {
-    out.touching_in_part = {1, gaps.ahead, f.a, f.b};
+    out.touching_in_part = {1, gaps.ahead, f.a, f.b, limits.bearing_band};
   }
   return kept > 0.0;
 }
@@ -434,7 +440,8 @@ PairOutcome compare(const model::Model& m, int a, int b, const FacePatch& pa, co
     result.overlapping = true;
     const bool too_wide = clearance_too_wide(tol, clearance);
     const bool fits = g.angle_degrees <= tol.angle_degrees && distance <= g.tolerance && !too_wide;
-    const CutLimits limits{tol.clearance_limit, snap, min_area, std::min(pa.area, pb.area), narrower};
+    const CutLimits limits{tol.per_joint ? kBearingBand : std::numeric_limits<double>::infinity(), snap, min_area,
+                           std::min(pa.area, pb.area), narrower};
     if (fits && add_contacts(m, {a, b, pa, pb, g}, piece, gaps, limits, out)) {
       result.accepted = true;
       // A piece that fits but is all slivers once cut is a near miss, so that it is named.

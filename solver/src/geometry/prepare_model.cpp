@@ -387,9 +387,8 @@ void warn_about_joints_touching_in_part(model::Model& m) {
   m.warnings.push_back(
       {"joints_touching_in_part",
        (t.joints == 1 ? std::string("a detected joint touches") : std::to_string(t.joints) + " detected joints touch") +
-           " over part of the faces' overlap only, where they are within " +
-           model::length_text(m.detection_summary.clearance_limit, m.units) +
-           " (the clearance limit) of the nearest they come; elsewhere they are further apart, up to " +
+           " over part of the faces' overlap only, where they are within " + model::length_text(t.band, m.units) +
+           " of the nearest they come; elsewhere they are further apart, up to " +
            model::length_text(t.farthest, m.units) + " between blocks '" + m.blocks[t.block_a].id + "' and '" +
            m.blocks[t.block_b].id + "' (a face tilted onto its partner): only that part is a contact",
        "/detection/joint_tolerance", t.farthest});

@@ -191,6 +191,7 @@ struct JointsTouchingInPart {
   std::size_t joints = 0;
   double farthest = 0.0;  ///< m, the first one's faces at their farthest
   int block_a = -1, block_b = -1;
+  double band = 0.0;      ///< m, how far beyond the nearest the faces bear
 };
 
 /// Detected joints dropped because a third block lies between their faces; the first one found.
