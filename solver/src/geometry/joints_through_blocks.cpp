@@ -83,7 +83,7 @@ class ContactGraph {
 /// How far from the plane of A-B (as a fraction of its gap) S's joints must lie: a fifth. Two
 /// layers of thickness t between A and B put the joint of each across the other (itself a joint
 /// through a block) a quarter of the 2t gap from A-B's plane: at a quarter, 7 mm tiles stacked
-/// five high were joined to the tile three above (the uniform-gap tests).
+/// five high were joined to the tile three above (found while testing the clearance limit).
 constexpr double kApartFromPlane = 0.2;
 
 /// A block S between A and B under joint ab, seen from A: S touches A with a contact facing as ab

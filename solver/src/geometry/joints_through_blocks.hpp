@@ -18,7 +18,8 @@ namespace rbla::geometry {
 /// `angle_degrees`, overlap it, seen along its normal, by more than 1 % of the smaller, and lie on
 /// either side of its plane, a fifth of its gap or more from it (S is in the gap, not beside B
 /// at B's level; with two equal layers between A and B, each layer's joint across the other lies a
-/// quarter of the gap from the plane, so a quarter itself is too tight). Supports form no joints with each other, so when S and B are both supports S's
+/// quarter of the gap from the plane, so a quarter itself is too tight). Supports form no joints
+/// with each other, so when S and B are both supports S's
 /// joint with A suffices (a block on a plinth, both fixed).
 std::vector<int> blocks_between(const model::Model& m, const std::vector<model::ContactInterface>& detected,
                                 const std::vector<bool>& apart, const std::vector<double>& gaps,

@@ -380,7 +380,8 @@ void warn_about_joints_through_blocks(model::Model& m) {
        "/blocks/" + std::to_string(t.between)});
 }
 
-/// Joints cut to the part where their faces are within the clearance limit: said once, with the first.
+/// Joints cut to the part where their faces bear (within kBearingBand of the nearest they come,
+/// geometry/interface_detection.cpp): said once, with the first.
 void warn_about_joints_touching_in_part(model::Model& m) {
   const model::JointsTouchingInPart& t = m.detection_summary.touching_in_part;
   if (t.joints == 0) return;
