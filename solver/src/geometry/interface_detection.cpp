@@ -377,12 +377,13 @@ constexpr double kBearingBand = kClearanceLimit;
 bool add_contacts(const model::Model& m, const FacePair& f, const Polygon2& piece, const PieceGaps& gaps,
                   const CutLimits& limits, Collector& out) {
   const double cut = gaps.clearance + limits.bearing_band;
-  const std::vector<Polygon2> parts = gaps.ahead > cut ? within(piece, f.pa, f.pb, f.g, cut, limits.snap, limits.min_area)
-                                                       : std::vector<Polygon2>{piece};
+  const bool cutting = gaps.ahead > cut;
+  const std::vector<Polygon2> parts = cutting ? within(piece, f.pa, f.pb, f.g, cut, limits.snap, limits.min_area)
+                                              : std::vector<Polygon2>{piece};
   double kept = 0.0;
   for (const Polygon2& part : parts) {
-    if (is_sliver(part, f.g.tolerance, limits.smaller_face_area, limits.narrower_face_width)) continue;
-    const PieceGaps part_gaps = gaps_over(part, f.pa, f.pb, f.g);
+    if (cutting && is_sliver(part, f.g.tolerance, limits.smaller_face_area, limits.narrower_face_width)) continue;
+    const PieceGaps part_gaps = cutting ? gaps_over(part, f.pa, f.pb, f.g) : gaps;
     out.interfaces.push_back(make_interface(f.a, f.b, f.pa, f.pb, f.g, part, m.default_friction));
     out.gaps.push_back(part_gaps.farthest);
     out.smallest_gaps.push_back(part_gaps.clearance);
