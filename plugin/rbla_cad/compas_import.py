@@ -29,7 +29,9 @@ else is refused with a message saying what was found and what is expected.
 Supports: the file's ``is_support`` nodes, ``--support KEY``, and, when the file marks none (or
 with ``--ground always``), every block resting on the ground plane: the horizontal plane through
 the model's lowest point, touched by a downward face whose corners are all within rbla's default
-joint tolerance (3 % of that face's diameter, read from the bundled schema) of it. compas_cra
+joint tolerance (3 % of that face's diameter, read from the bundled schema) of it and which comes
+within rbla's clearance limit (30 mm) of it somewhere, the two tests rbla's interface detection
+applies to a joint. compas_cra
 files usually carry no supports (its example scripts call ``set_boundary_conditions([0])`` after
 loading), so their lowest blocks become fixed.
 
@@ -65,6 +67,10 @@ from .jsonschema_lite import load_schema
 from .safe_files import MAX_INPUT_BYTES, FileError, check_not_input, read_input, resolve_output, write_output
 
 SCHEMA_VERSION = "1.0.0"
+# rbla's clearance limit at the default joint tolerance, in metres (docs/detection.md, "The
+# rule"): a joint's faces must come this close somewhere. The solver writes the value it used as
+# detection.tolerances.clearance_limit; tests/plugin/test_compas_import.py checks the two agree.
+CLEARANCE_LIMIT_M = 0.03
 
 
 def detection_defaults():
@@ -246,13 +252,15 @@ def mesh_geometry(mesh, key, info, pointer=""):
 # Supports by contact with the ground
 # --------------------------------------------------------------------------------------------
 
-def ground_contacts(blocks, joint_tolerance, angle_tolerance):
+def ground_contacts(blocks, joint_tolerance, angle_tolerance, clearance=CLEARANCE_LIMIT_M):
     """Ids of the blocks that rest on the ground plane, the horizontal plane through the model's
     lowest point: blocks with a face that faces down (outward normal within angle_tolerance
-    degrees of -z) and whose every corner is within joint_tolerance times the face's diameter
-    of that plane, the test rbla's interface detection would apply between the face and a slab
-    on the ground. Feet that CAD left a few millimetres up, or warped, still count; a block that
-    only touches the ground with an edge or a corner does not."""
+    degrees of -z), whose every corner is within joint_tolerance times the face's diameter of
+    that plane and whose lowest corner is within `clearance` (metres) of it: the tests rbla's
+    interface detection would apply between the face and a slab on the ground. Feet that CAD
+    left a few millimetres up, or warped, still count; a block that only touches the ground with
+    an edge or a corner does not, nor does a large block standing on a thin plinth (its face is
+    within 3 % of its diameter of the ground, but not within the clearance)."""
     z0 = min(v[2] for b in blocks for v in b["vertices"])
     cos_limit = math.cos(math.radians(angle_tolerance))
     resting = []
@@ -265,7 +273,8 @@ def ground_contacts(blocks, joint_tolerance, angle_tolerance):
             if ln == 0.0 or -n[2] / ln < cos_limit:
                 continue
             diameter = max(math.sqrt(_dot(_sub(p, q), _sub(p, q))) for p in pts for q in pts)
-            if max(abs(p[2] - z0) for p in pts) <= joint_tolerance * diameter:
+            heights = [p[2] - z0 for p in pts]
+            if max(heights) <= joint_tolerance * diameter and min(heights) <= clearance * (1.0 + 1e-9):
                 resting.append(b["id"])
                 break
     return z0, resting

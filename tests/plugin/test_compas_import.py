@@ -12,6 +12,7 @@ import os
 import random
 import subprocess
 import sys
+import tempfile
 import unittest
 
 import _support  # noqa: F401
@@ -52,6 +53,16 @@ def generated_vault(nu=6, nv=8):
     text = subprocess.run([sys.executable, script, "vault", "--nu", str(nu), "--nv", str(nv)],
                           capture_output=True, text=True, check=True).stdout
     return json.loads(text)
+
+
+def box(name, low, high):
+    """An rbla block: the axis-aligned box from `low` to `high`, faces counter-clockwise from
+    outside."""
+    (x0, y0, z0), (x1, y1, z1) = low, high
+    vertices = [[x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0],
+                [x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1]]
+    faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
+    return {"id": name, "vertices": vertices, "faces": faces}
 
 
 def roles(model):
@@ -302,6 +313,31 @@ class GroundContactTest(unittest.TestCase):
         model, info = compas_import.convert(load("compas_cra/A.json"))
         self.assertEqual(info["ground_contacts"], [])
         self.assertNotIn("fixed", roles(model).values())
+
+    def test_a_pier_on_a_plinth_is_not_fixed_to_the_ground(self):
+        # A 1 x 1 m pier on a 1.2 x 1.2 m plinth 40 mm thick: the pier's foot is within 3 % of its
+        # diameter (42 mm) of the ground plane, but 40 mm clear of it everywhere: it stands on the
+        # plinth, not on the ground, as rbla's detection (clearance limit 30 mm) sees it.
+        plinth = box("plinth", (-0.6, -0.6, 0.0), (0.6, 0.6, 0.04))
+        pier = box("pier", (-0.5, -0.5, 0.04), (0.5, 0.5, 2.04))
+        doc = [mesh_data(plinth), mesh_data(pier)]
+        model, info = compas_import.convert(doc)
+        self.assertEqual(info["ground_contacts"], ["0"])
+        self.assertEqual(roles(model), {"0": "fixed", "1": "free"})
+        # The same foot 20 mm up is a foot CAD left off the ground: it counts.
+        model, info = compas_import.convert([mesh_data(box("pier", (-0.5, -0.5, 0.02), (0.5, 0.5, 2.02))),
+                                             mesh_data(box("x", (3.0, 0.0, 0.0), (3.2, 0.2, 0.2)))])
+        self.assertEqual(sorted(info["ground_contacts"]), ["0", "1"])
+
+    @unittest.skipUnless(_support.solver_executable(), "rbla not built")
+    def test_the_clearance_limit_is_the_solvers(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "result.json")
+            subprocess.run([_support.solver_executable(), "solve", _support.sample("block.json"), "-o", out, "-q"],
+                           check=True, capture_output=True)
+            with open(out, encoding="utf-8") as fh:
+                tolerances = json.load(fh)["detection"]["tolerances"]
+        self.assertEqual(tolerances["clearance_limit"], compas_import.CLEARANCE_LIMIT_M)
 
     def test_files_with_supports_keep_theirs_unless_asked(self):
         doc = load("compas_assembly/wall_assembly.json")
