@@ -280,4 +280,20 @@ std::vector<BlockOverlap> find_overlaps(const model::Model& m, double tolerance)
   return found;
 }
 
+double thinnest_width(const model::Block& block) {
+  double thinnest = std::numeric_limits<double>::infinity();
+  for (const std::vector<int>& face : block.faces) {
+    const Vec3 area = face_geometry(block.vertices, face).area_vector;
+    if (!(area.norm() > 0.0)) continue;
+    const Vec3 n = area.normalized();
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (const Vec3& v : block.vertices) {
+      low = std::min(low, v.dot(n));
+      high = std::max(high, v.dot(n));
+    }
+    thinnest = std::min(thinnest, high - low);
+  }
+  return thinnest;
+}
+
 }  // namespace rbla::geometry

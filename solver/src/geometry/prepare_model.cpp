@@ -261,8 +261,16 @@ std::string volume_text(double cubic_metres, const model::Units& units) {
   return format(cubic_metres / std::pow(units.length_to_m, 3)) + " " + units.length_name + "3";
 }
 
-/// Blocks occupying the same space: an error above kOverlapVolumeFraction of the smaller block;
-/// smaller overlaps deeper than the tolerance are one warning (the first pair and a count).
+/// The deepest overlap of blocks a and b taken for drawing slack at a joint between them (m): a
+/// tenth of the thinner block's thickness, at most 10 mm.
+double shallow_overlap_limit(const model::Block& a, const model::Block& b) {
+  return std::min(kShallowOverlapCap, kShallowOverlapFraction * std::min(thinnest_width(a), thinnest_width(b)));
+}
+
+/// Blocks occupying the same space: an error above kOverlapVolumeFraction of the smaller block
+/// unless the overlap is shallow (shallow_overlap_limit; its depth is an upper bound of how far
+/// one block must move to free the other, convex or not); other overlaps deeper than the
+/// tolerance are one warning (the first pair and a count).
 void check_overlaps(const model::Model& m, double tolerance, std::vector<InputIssue>& errors,
                     std::vector<model::Warning>& warnings) {
   int small = 0;
@@ -289,10 +297,14 @@ void check_overlaps(const model::Model& m, double tolerance, std::vector<InputIs
     const double fraction = o.volume / std::min(a.volume, b.volume);
     const std::string what = "blocks '" + a.id + "' and '" + b.id + "' overlap: " + volume_text(o.volume, m.units) +
                              " in common (" + format(100.0 * fraction) + " % of the smaller" +
-                             (o.convex ? ", up to " + length6(o.depth, m.units) + " deep)" : ")");
-    if (fraction > kOverlapVolumeFraction) {
+                             ", up to " + length6(o.depth, m.units) + " deep)";
+    const double shallow = shallow_overlap_limit(a, b);
+    if (fraction > kOverlapVolumeFraction && !(o.depth <= shallow)) {
       errors.push_back({"/blocks/" + std::to_string(o.block_b),
-                        what + "; blocks may touch but not share volume (check for duplicated or misplaced blocks)"});
+                        what + ", more than " + format(100.0 * kOverlapVolumeFraction) +
+                            " % of the smaller and deeper than " + length6(shallow, m.units) +
+                            " (drawing slack at a joint: a tenth of the thinner block, at most 10 mm); "
+                            "blocks may touch but not share volume (check for duplicated or misplaced blocks)"});
     } else if (small++ == 0) {
       first_small = what;
     }
@@ -302,7 +314,8 @@ void check_overlaps(const model::Model& m, double tolerance, std::vector<InputIs
                         first_small + (small > 1 ? " (and " + std::to_string(small - 1) + " more pairs)" : "") +
                             ": more than the distance tolerance (" + length6(tolerance, m.units) +
                             ") accepts at a joint but under " + format(100.0 * kOverlapVolumeFraction) +
-                            " % of a block, accepted as a CAD imperfection; a contact across it may be missed",
+                            " % of a block or no deeper than a tenth of the thinner block, accepted as a CAD "
+                            "imperfection; a contact across it may be missed",
                         ""});
   }
 }
