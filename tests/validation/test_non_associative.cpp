@@ -325,8 +325,9 @@ TEST(NonAssociative, TrajectoriesReportTheConservativeCertifiedState) {
   }
 }
 
-// On this wall the six runs certify states from 0.51282 to 0.51398 and a later run than the first
-// finds the lowest: the selection itself is exercised, not only the first run.
+// On this wall the six runs certify states from 0.508487 to 0.511502 and a later run than the
+// first finds the lowest (0.508650 for the first): the selection itself is exercised, not only the
+// first run.
 TEST(NonAssociative, ALaterRunCanBeTheOneReported) {
   json model = at_defaults(finish(running_bond_blocks(6, 10), Case{}));
   model["analysis"]["non_associative"] = {{"trajectories", 6}};
@@ -334,7 +335,7 @@ TEST(NonAssociative, ALaterRunCanBeTheOneReported) {
   ASSERT_EQ(n.verdict, Verdict::Collapse) << n.verdict_text;
   ASSERT_EQ(n.non_associative_trajectories.size(), 6u);
   EXPECT_GT(n.non_associative_reported, 0);
-  EXPECT_LT(*n.load_multiplier, n.non_associative_trajectories[0].value * (1.0 - 1e-3));
+  EXPECT_LT(*n.load_multiplier, n.non_associative_trajectories[0].value * (1.0 - 1e-4));
 }
 
 // A block wedged between a fixed wall and a heavy free column, pushed down by a live load equal to

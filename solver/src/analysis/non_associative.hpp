@@ -30,8 +30,9 @@
 // the step's optimal face (below), so a certified state is reported with its mechanism.
 //
 // Non-associative collapse is not unique: states compatible with one mechanism form a range of
-// values (the drawer of tests/validation: 26.68 to 44.55 kN). The conservative end is reported
-// (the lowest alpha, the highest R), with the range of the step's optimal face. Different
+// values (the drawer of tests/validation: 26.68 to 44.55 kN): the optimal face of the problem
+// shifted by that mechanism's own slip rates. Its conservative end is reported (the lowest alpha,
+// the highest R), with the range. Different
 // mechanisms give different states too, and which one a run certifies depends on when it tests
 // (docs/benchmark/non_associative_states.md): analysis.non_associative.trajectories runs the
 // scheme with several test schedules and reports the most conservative certified state.
