@@ -507,6 +507,11 @@ class ModelBuilder(object):
                 elif key == "damping":
                     na[key] = _number(val, key, "/analysis/non_associative/" + key,
                                       exclusive_minimum=0, maximum=1)
+                elif key == "pointwise_retry":
+                    if not isinstance(val, bool):
+                        raise ModelError("non-associative setting pointwise_retry must be true or false",
+                                         pointer="/analysis/non_associative/" + key)
+                    na[key] = val
                 elif key == "trajectories":
                     na[key] = int(_number(val, key, "/analysis/non_associative/" + key,
                                           minimum=1, maximum=6))

@@ -103,6 +103,8 @@ std::map<std::string, Field> fields() {
        [](const Model& m) { return json(m.analysis.non_associative_damping); }},
       {analysis + "non_associative/properties/warm_start",
        [](const Model& m) { return json(m.analysis.non_associative_warm_start); }},
+      {analysis + "non_associative/properties/pointwise_retry",
+       [](const Model& m) { return json(m.analysis.non_associative_pointwise_retry); }},
       {analysis + "non_associative/properties/trajectories",
        [](const Model& m) { return json(m.analysis.non_associative_trajectories); }},
       {analysis + "time_limit", [](const Model& m) { return json(m.analysis.time_limit_seconds); }},

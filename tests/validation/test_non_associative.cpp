@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -75,6 +77,7 @@ TEST(NonAssociative, ClosedFormsAtDefaultSettings) {
     const double value = r.base_reaction ? *r.base_reaction : *r.load_multiplier;
     EXPECT_LT(relative_error(value, expected), 1e-6) << value << " expected " << expected;
     EXPECT_TRUE(r.non_associative_converged) << r.non_associative_stop;
+    EXPECT_EQ(r.non_associative_pointwise, std::optional<bool>(true)) << "a unique state matches its mechanism";
     EXPECT_LT(r.work.relative_error, 1e-6) << "kinematic " << r.work.kinematic_value;
   }
 }
@@ -93,6 +96,7 @@ TEST(NonAssociative, DrawerReportsTheConservativeEndOfItsRange) {
   EXPECT_LT(relative_error(r.non_associative_range->first, low), 1e-6);
   EXPECT_LT(relative_error(r.non_associative_range->second, high), 1e-6);
   EXPECT_TRUE(r.non_associative_converged);
+  EXPECT_EQ(r.non_associative_pointwise, std::optional<bool>(true));
   EXPECT_LT(r.work.relative_error, 1e-6);
 }
 
@@ -229,6 +233,62 @@ TEST(NonAssociative, TheCircumscribedPyramidIsNamedAsAnotherFrictionLaw) {
   const auto p = run(at_defaults(finish(running_bond_blocks(5, 6), planar)));
   ASSERT_EQ(p.verdict, Verdict::Collapse) << p.verdict_text;
   for (const auto& w : p.warnings) EXPECT_NE(w.code, "non_associative_circumscribed_pyramid") << w.message;
+}
+
+// A block sliding on a flat joint does not dilate, so its non-associative value is the associative
+// one of the same friction law, in every direction: for the exact cone mu, for a pyramid the reach
+// of its cross-section against the load, which a load between two edges (22.5 degrees off an edge
+// of the 8-sided pyramid) puts on a face. The pointwise check (compatible_states.hpp) must find the
+// state: at a sliding point of a pyramid the friction against the slip is the pyramid's reach,
+// not mu.
+TEST(NonAssociative, ASlidingBlockMatchesItsMechanismPointwiseWithEveryCone) {
+  for (const std::string cone : {"exact", "pyramid_inscribed", "pyramid_circumscribed"}) {
+    for (const double degrees : {0.0, 10.0, 22.5}) {
+      SCOPED_TRACE(cone + " at " + std::to_string(degrees) + " degrees");
+      Case c;
+      c.formulation = "3d";
+      c.cone = cone;
+      const double angle = degrees * 3.14159265358979323846 / 180.0;
+      c.seismic_direction = json::array({std::cos(angle), std::sin(angle), 0.0});
+      const json model = single_block(2.0, 1.0, c, 2.0);
+      const auto a = run(model);
+      const auto n = run(at_defaults(model));
+      ASSERT_EQ(n.verdict, Verdict::Collapse) << n.verdict_text;
+      EXPECT_LT(relative_error(alpha_of(n), alpha_of(a)), 1e-6) << alpha_of(n) << " against " << alpha_of(a);
+      if (cone == "exact") {
+        EXPECT_LT(relative_error(alpha_of(n), 0.6), 1e-6);
+      }
+      EXPECT_EQ(n.non_associative_pointwise, std::optional<bool>(true));
+    }
+  }
+}
+
+// samples/wall_settlement.json (mu 0.6): the first state that passes the fixed-point test matches
+// its mechanism in work only (no equilibrated state matches it point by point); the next one to
+// pass, three steps on, does. With pointwise_retry (the default) the scheme goes on and reports
+// it; without, it reports the first and says it matches in work only.
+TEST(NonAssociative, APointwiseRetryFindsAStateThatMatchesItsMechanism) {
+  std::ifstream file(std::string(RBLA_SOURCE_DIR) + "/samples/wall_settlement.json");
+  const json sample = at_defaults(json::parse(file));
+  const auto with = run(sample);
+  ASSERT_EQ(with.verdict, Verdict::Collapse) << with.verdict_text;
+  EXPECT_TRUE(with.non_associative_converged) << with.non_associative_stop;
+  EXPECT_EQ(with.non_associative_pointwise, std::optional<bool>(true));
+  EXPECT_NE(with.non_associative_stop.find("an earlier one matched it in work only"), std::string::npos)
+      << with.non_associative_stop;
+  json off = sample;
+  off["analysis"]["non_associative"]["pointwise_retry"] = false;
+  const auto without = run(off);
+  EXPECT_TRUE(without.non_associative_converged) << without.non_associative_stop;
+  EXPECT_EQ(without.non_associative_pointwise, std::optional<bool>(false));
+  EXPECT_GT(without.non_associative_open_force, 0.0);
+  EXPECT_TRUE(std::any_of(without.warnings.begin(), without.warnings.end(),
+                          [](const auto& w) { return w.code == "non_associative_not_pointwise"; }));
+  EXPECT_TRUE(std::none_of(with.warnings.begin(), with.warnings.end(),
+                           [](const auto& w) { return w.code == "non_associative_not_pointwise"; }));
+  // Both are collapse states of the model, never below the associative reaction.
+  EXPECT_GE(*with.base_reaction, *with.non_associative_bound * (1.0 - 1e-9));
+  EXPECT_GE(*without.base_reaction, *without.non_associative_bound * (1.0 - 1e-9));
 }
 
 // Each run counts the interior-point iterations of its steps (the history's, step 0 being the

@@ -17,6 +17,7 @@
 
 #include "validation_helpers.hpp"
 
+#include "analysis/compatible_states.hpp"
 #include "rbla/conic/solver.hpp"
 
 #include <gtest/gtest.h>
@@ -95,6 +96,16 @@ class CompatibleStates {
   }
 
   std::optional<double> extreme(double sign) const {
+    const conic::Solution s = solve(sign);
+    if (s.info.status != conic::SolveStatus::Solved) return std::nullopt;
+    return s.x[0] - s.x[1];
+  }
+
+  /// Whether the LP has no feasible point: the solver's certificate of primal infeasibility.
+  bool none() const { return solve(1.0).info.status == conic::SolveStatus::PrimalInfeasible; }
+
+ private:
+  conic::Solution solve(double sign) const {
     conic::ConicProblem problem;
     problem.A.resize(rows_, columns_);
     problem.A.setFromTriplets(entries_.begin(), entries_.end());
@@ -108,12 +119,9 @@ class CompatibleStates {
     problem.c[1] = -sign;
     problem.cones.num_nonneg = columns_;
     conic::ConicSolver solver(problem);
-    const conic::Solution s = solver.solve();
-    if (s.info.status != conic::SolveStatus::Solved) return std::nullopt;
-    return s.x[0] - s.x[1];
+    return solver.solve();
   }
 
- private:
   int column() { return columns_++; }
   int row() { return rows_++; }
   void add(int row, int column, double value) { entries_.emplace_back(row, column, value); }
@@ -185,9 +193,8 @@ std::vector<WallScene> wall_scenes() {
   std::ifstream file(std::string(RBLA_SOURCE_DIR) + "/samples/wall_opening.json");
   const json opening = json::parse(file);
   s.push_back({"samples/wall_opening.json", opening});
-  // Not here: the same wall at mu 10, whose certified state is compatible with its mechanism only to
-  // the test's tolerance (points carrying 0.3 % of the largest normal force open by 2 % of the
-  // largest motion), so no state is exactly compatible and this LP is infeasible.
+  // Not here: the same wall at mu 0.8 or 10, whose certified mechanisms admit no exactly compatible
+  // state (the next test).
   for (WallScene& scene : s) {
     scene.model["analysis"]["friction_model"] = "non_associative";
     scene.model["analysis"].erase("non_associative");
@@ -204,6 +211,7 @@ TEST(NonAssociativeCompatibleStates, ReportedValueAndRangeAreThoseOfTheMechanism
     ASSERT_TRUE(r.non_associative_converged);
     ASSERT_TRUE(r.planar);
     ASSERT_TRUE(r.non_associative_range.has_value());
+    EXPECT_EQ(r.non_associative_pointwise, std::optional<bool>(true));
     const auto points = classify_points(loaded.model, r, 1e-5);
     const CompatibleStates states(loaded.model, points);
     const auto low = states.extreme(+1.0), high = states.extreme(-1.0);
@@ -212,6 +220,32 @@ TEST(NonAssociativeCompatibleStates, ReportedValueAndRangeAreThoseOfTheMechanism
     EXPECT_NEAR(alpha, *low, 1e-5 * alpha) << "range by the independent LP [" << *low << ", " << *high << "]";
     EXPECT_NEAR(r.non_associative_range->first, *low, 1e-5 * alpha);
     EXPECT_NEAR(r.non_associative_range->second, *high, 1e-5 * alpha);
+  }
+}
+
+// The fixed-point test bounds work, not forces: on samples/wall_opening.json at mu 0.8 and 10 the
+// certified state keeps force at points its mechanism opens (an independent review's LP found no
+// exactly compatible state, at every velocity threshold from 1e-4 to 1e-6). rbla must say so
+// (pointwise false, with the warning and the measures), and this LP, built at rbla's own
+// threshold, must agree that no state matches.
+TEST(NonAssociativeCompatibleStates, AMechanismNoStateMatchesIsReportedAsSuch) {
+  std::ifstream file(std::string(RBLA_SOURCE_DIR) + "/samples/wall_opening.json");
+  const json opening = json::parse(file);
+  for (const double mu : {0.8, 10.0}) {
+    SCOPED_TRACE("mu " + std::to_string(mu));
+    json model = opening;
+    model["defaults"]["friction"] = mu;
+    model["analysis"]["friction_model"] = "non_associative";
+    const auto loaded = rbla::io::load_model_text(model.dump());
+    const AnalysisResult r = rbla::analysis::analyse(loaded.model);
+    ASSERT_EQ(r.verdict, Verdict::Collapse) << r.verdict_text;
+    ASSERT_TRUE(r.non_associative_converged);
+    ASSERT_EQ(r.non_associative_pointwise, std::optional<bool>(false));
+    EXPECT_GT(r.non_associative_open_force + r.non_associative_friction_shortfall, 1e-4);
+    EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(),
+                            [](const auto& w) { return w.code == "non_associative_not_pointwise"; }));
+    const CompatibleStates states(loaded.model, classify_points(loaded.model, r, analysis::kMovingPointFraction));
+    EXPECT_TRUE(states.none()) << "the independent LP found a state compatible with the mechanism";
   }
 }
 

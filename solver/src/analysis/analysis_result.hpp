@@ -118,6 +118,8 @@ struct NonAssociativeTrajectory {
   TestSchedule schedule;
   double value = 0.0;  ///< alpha, or the base reaction in kN, of the state the run ended with
   bool converged = false;  ///< the state passed the fixed-point test
+  /// the state matches its mechanism point by point (AnalysisResult::non_associative_pointwise)
+  std::optional<bool> pointwise;
   int steps = 0;
   int checks = 0;
   double seconds = 0.0;  ///< of the run's conic solves
@@ -218,6 +220,16 @@ struct AnalysisResult {
   /// The values of all states compatible with the mechanism found (alpha, or R in kN): non-
   /// associative collapse is not unique; the conservative end is the one reported.
   std::optional<std::pair<double, double>> non_associative_range;
+  /// Whether the certified mechanism admits states compatible with it point by point (no force
+  /// where it opens, the full friction where it slides; compatible_states.hpp): true when it
+  /// does (the state reported and the range are then such states), false when no equilibrated
+  /// state is (the certificate holds in work only). Empty when not checked.
+  std::optional<bool> non_associative_pointwise;
+  /// When non_associative_pointwise is false, in the state reported: the largest normal force
+  /// at a point that opens, and the largest shortfall of friction at a point that slides, both
+  /// over the largest normal force of any point.
+  double non_associative_open_force = 0.0;
+  double non_associative_friction_shortfall = 0.0;
   /// The associative value of the same model (alpha, or R in kN), the scheme's first solve. Every
   /// non-associative collapse state has forces admissible for the associative problem, so its
   /// alpha is at most this and its R at least this (static theorem; Drucker 1954): a proven

@@ -1,5 +1,6 @@
 #include "analysis/non_associative.hpp"
 
+#include "analysis/compatible_states.hpp"
 #include "analysis/mechanism.hpp"
 #include "analysis/unloaded_blocks.hpp"
 #include "model/angles.hpp"
@@ -11,6 +12,7 @@
 #include <deque>
 #include <limits>
 #include <memory>
+#include <optional>
 
 namespace rbla::analysis {
 
@@ -175,6 +177,16 @@ class ShiftScheme {
       // No point slides in the associative mechanism: it has no dilatancy to remove.
       result_.non_associative_converged = true;
       result_.non_associative_stop = "no contact point slides in the associative mechanism";
+      // Then every state compatible with it has the same value (no friction work in its work
+      // equation); the check says whether the associative state is one point by point.
+      const PointPattern pattern = point_pattern(m_, f_, associative.y);
+      const CompatibleStates states = states_matching(pattern);
+      if (states.outcome == CompatibleStates::Outcome::Found) candidate_.pointwise = true;
+      if (states.outcome == CompatibleStates::Outcome::None) {
+        candidate_.pointwise = false;
+        candidate_.violation = pattern_violation(m_, f_, pattern, associative.x);
+      }
+      record_pointwise();
       return;
     }
     int last_check = 0, last_step_number = 0;
@@ -194,11 +206,12 @@ class ShiftScheme {
                                                              : schedule_.when_close;
       if (step - last_check >= wait) {
         last_check = step;
-        if (certify(next, shift)) {
-          result_.non_associative_converged = true;
-          result_.non_associative_stop = "the state passed the fixed-point test (shear capped at mu N)";
-          break;
-        }
+        if (certify(next, shift) && accept(step)) break;
+      }
+      if (work_only_ && step >= retry_until_) {
+        keep_work_only("no state certified in the next " + count(schedule_.at_most, "step", "steps") +
+                       " matched its mechanism point by point");
+        break;
       }
       last_step_ = std::move(next);
       last_shift_ = shift;
@@ -212,6 +225,11 @@ class ShiftScheme {
       } else {
         shift = mixing_.next(shift, rates);
       }
+    }
+    if (work_only_ && !result_.non_associative_converged) {
+      keep_work_only(result_.non_associative_stop.empty() ? "the step limit was reached before another state passed"
+                                                          : "the search for one that does stopped: " +
+                                                                result_.non_associative_stop);
     }
     if (!result_.non_associative_converged) {
       if (last_step_.x.size() == 0) return;
@@ -230,6 +248,47 @@ class ShiftScheme {
   }
 
  private:
+  /// After a passed test (certify): whether the run ends with the candidate. A candidate that
+  /// matches its mechanism only in work (compatible_states.hpp) is kept while the scheme goes on
+  /// for up to TestSchedule::at_most more steps, looking for one that matches point by point.
+  /// On the 16 of 48 planar runs whose first certified state matched only in work, this found one
+  /// that matches on 4, at 37 to 74 % more interior-point iterations on those 16 runs; going on
+  /// to 50 steps found one more (docs/method.md, "How compatible a certified state is").
+  bool accept(int step) {
+    const std::string passed = "the state passed the fixed-point test (shear capped at mu N)";
+    if (candidate_.pointwise != false) {
+      result_.non_associative_converged = true;
+      result_.non_associative_stop =
+          work_only_ ? passed + " and matches its mechanism point by point (an earlier one matched it in work only)"
+                     : passed;
+      work_only_.reset();
+      return true;
+    }
+    if (!work_only_ && request_.non_associative_pointwise_retry) {
+      work_only_ = candidate_;
+      retry_until_ = step + schedule_.at_most;
+      return false;
+    }
+    if (!work_only_) {
+      result_.non_associative_converged = true;
+      result_.non_associative_stop = passed + " and matches its mechanism in work only";
+      return true;
+    }
+    keep_work_only("the next state that passed matched its mechanism in work only too");
+    return true;
+  }
+
+  /// Ends the run with the more conservative of the states certified in work only.
+  void keep_work_only(const std::string& why) {
+    const double kept = multiplier_value(f_, work_only_->state.x), later = multiplier_value(f_, candidate_.state.x);
+    const bool later_is_certified = candidate_.confirmed && candidate_.pointwise == false;
+    if (!later_is_certified || (f_.settlement ? kept >= later : kept <= later)) candidate_ = *work_only_;
+    work_only_.reset();
+    result_.non_associative_converged = true;
+    result_.non_associative_stop = "the state passed the fixed-point test (shear capped at mu N) and matches its "
+                                   "mechanism in work only; " + why;
+  }
+
   /// Scale of the value for relative measures: |alpha| (at least 1e-6: a live load a millionth of
   /// its own size), or |R| (at least a millionth of the mean block weight). A floor far below that
   /// made a state at alpha = 0 (a block wedged between walls that slides under its own weight)
@@ -247,11 +306,14 @@ class ShiftScheme {
     return change;
   }
 
-  /// Solves with the given cost; false (after a warning) when no solution came back.
+  /// Solves with the given cost; false (after a warning) when no solution came back. When the
+  /// clock stops a run that holds a certified state (one certified in work only, kept by accept,
+  /// or the one whose range is being selected), that state is reported: the verdict stays.
   bool solve(const Eigen::VectorXd& cost, double gap, conic::Solution& out, int step) {
+    const bool holds_certified = work_only_ || result_.non_associative_converged;
     if (deadline_.left() <= 0.0) {
-      result_.verdict = Verdict::TimeLimit;
-      result_.non_associative_stop = "the time limit ran out";
+      if (!holds_certified) result_.verdict = Verdict::TimeLimit;
+      if (!result_.non_associative_converged) result_.non_associative_stop = "the time limit ran out";
       return false;
     }
     conic::Settings& s = solver_.settings();
@@ -276,18 +338,20 @@ class ShiftScheme {
     // The result's solver record is of the last solve: this one, which did not finish.
     result_.solver_info = out.info;
     result_.interior_point_history = out.info.history;
-    if (out.info.status == conic::SolveStatus::TimeLimit) result_.verdict = Verdict::TimeLimit;
-    if (out.info.status == conic::SolveStatus::Cancelled) result_.verdict = Verdict::Cancelled;
+    const bool clock = out.info.status == conic::SolveStatus::TimeLimit || out.info.status == conic::SolveStatus::Cancelled;
+    if (clock && !holds_certified) {
+      result_.verdict = out.info.status == conic::SolveStatus::TimeLimit ? Verdict::TimeLimit : Verdict::Cancelled;
+    }
     const std::string what = step > 0 ? "non-associative step " + std::to_string(step)
                                       : std::string("a selection solve of the non-associative scheme");
-    const std::string outcome = result_.verdict == Verdict::TimeLimit || result_.verdict == Verdict::Cancelled
-                                    ? "; the analysis stopped and no value is reported"
-                                    : "; the last completed step is reported";
+    const std::string outcome = holds_certified ? "; the state certified before it is reported"
+                                : clock         ? "; the analysis stopped and no value is reported"
+                                                : "; the last completed step is reported";
     result_.warnings.push_back(
         {"non_associative_step_failed", what + " ended with " + conic::to_string(out.info.status) + outcome, ""});
     // A failed step ends the run; a failed selection only loses that selection (certify keeps the
     // step's own state), unless the clock stopped it.
-    if (step > 0 || result_.verdict == Verdict::TimeLimit || result_.verdict == Verdict::Cancelled) {
+    if ((step > 0 || clock) && !result_.non_associative_converged) {
       result_.non_associative_stop =
           std::string(step > 0 ? "a step" : "a selection solve") + " ended with " + conic::to_string(out.info.status);
     }
@@ -340,18 +404,72 @@ class ShiftScheme {
     if (f_.settlement ? after >= before : after <= before) candidate_.state = std::move(end);
   }
 
+  /// After a passed test: the state to report among those compatible with the certified
+  /// mechanism. Point by point when the mechanism admits such states (compatible_states.hpp):
+  /// their conservative end is reported and their other end bounds the range. Otherwise the
+  /// certificate holds in work only: the conservative end of the mechanism's face is reported
+  /// (move_to_mechanism_face), and how far it is from pointwise compatible.
+  void settle_on_mechanism() {
+    if (deadline_.left() <= 0.0) return;
+    const PointPattern pattern = point_pattern(m_, f_, candidate_.mechanism_y);
+    CompatibleStates states = states_matching(pattern);
+    if (states.outcome == CompatibleStates::Outcome::Found) {
+      candidate_.pointwise = true;
+      candidate_.state = std::move(states.conservative);
+      candidate_.other_end = multiplier_value(f_, states.other.x);
+      return;
+    }
+    move_to_mechanism_face();
+    if (states.outcome != CompatibleStates::Outcome::None) return;
+    candidate_.pointwise = false;
+    candidate_.violation = pattern_violation(m_, f_, pattern, candidate_.state.x);
+  }
+
+  /// The candidate's pointwise check into the result, with a warning when no state matched its
+  /// mechanism point by point.
+  void record_pointwise() {
+    result_.non_associative_pointwise = candidate_.pointwise;
+    if (candidate_.pointwise != false) return;
+    result_.non_associative_open_force = candidate_.violation.open_force;
+    result_.non_associative_friction_shortfall = candidate_.violation.friction_shortfall;
+    result_.warnings.push_back(
+        {"non_associative_not_pointwise",
+         "the certified state matches its mechanism in work (to analysis.non_associative.tolerance), but no "
+         "equilibrated state matches the mechanism point by point: in the state reported, points that open carry up "
+         "to " + format(100.0 * candidate_.violation.open_force, 3) + " % of the largest normal force and points "
+         "that slide fall short of full friction by up to " +
+         format(100.0 * candidate_.violation.friction_shortfall, 3) +
+         " % of it. States that nearly match may lie further from the value than the tolerance; a smaller "
+         "tolerance or more runs (analysis.non_associative.trajectories) may find one that matches",
+         "/analysis/non_associative/tolerance"});
+  }
+
+  /// The states compatible point by point with a mechanism's pattern (compatible_states.hpp).
+  CompatibleStates states_matching(const PointPattern& pattern) {
+    conic::Settings settings = solver_.settings();
+    settings.time_limit_seconds = std::max(deadline_.left(), 1e-6);
+    const auto start = Clock::now();
+    CompatibleStates states = compatible_states(m_, f_, pattern, cost_, settings);
+    result_.solve_seconds += seconds_since(start);
+    iterations_.tests += states.iterations;
+    return states;
+  }
+
   /// Keeps the conservative state of `step`'s face (or, when that cannot be selected, the step's
   /// own state) as the candidate to report, and tests it: true when it is optimal for the
   /// cylinder problem built from its own normal forces (cylinder_confirms), whose mechanism is
   /// then the candidate's.
   bool certify(const conic::Solution& step, const Eigen::VectorXd& shift) {
     candidate_.shift = shift;
+    candidate_.other_end.reset();
+    candidate_.pointwise.reset();
     candidate_.face_optimum = step.info.primal_objective;
     candidate_.selected = select(shift, candidate_.face_optimum, +1.0, candidate_.state);
     if (!candidate_.selected) candidate_.state = step;
     candidate_.mechanism_y = step.y;
-    candidate_.confirmed = cylinder_confirms(candidate_.state, candidate_.mechanism_y);
-    if (candidate_.confirmed) move_to_mechanism_face();
+    candidate_.confirmed = cylinder_confirms(candidate_.state, candidate_.mechanism_y, candidate_.gap);
+    if (candidate_.confirmed) candidate_.arbitrary_blocks = capped_arbitrary_blocks_;
+    if (candidate_.confirmed) settle_on_mechanism();
     candidate_.dilatancy = dilatancy_work(m_, f_, candidate_.state, candidate_.mechanism_y) /
                            scale(multiplier_value(f_, candidate_.state.x));
     return candidate_.confirmed;
@@ -363,7 +481,7 @@ class ShiftScheme {
   /// scheme's tolerance) means the capped problem's mechanism, which cannot dilate, is compatible
   /// with the state: together they are a non-associative collapse state. The mechanism is then
   /// written into `mechanism_y` (rows of the associative formulation).
-  bool cylinder_confirms(const conic::Solution& state, Eigen::VectorXd& mechanism_y) {
+  bool cylinder_confirms(const conic::Solution& state, Eigen::VectorXd& mechanism_y, double& gap) {
     if (deadline_.left() <= 0.0) return false;
     const std::vector<double> normals = normal_forces(m_, f_, f_.point_forces(state.x));
     // A small floor keeps every cylinder with an interior. It is shear capacity that needs no
@@ -402,7 +520,7 @@ class ShiftScheme {
                          (f_.settlement ? std::max(f_.force_scale, std::abs(v_state)) : std::max(1.0, std::abs(v_state)));
     const double slack = request_.non_associative_tolerance * scale(v_state) + noise;
     const bool confirmed = f_.settlement ? v_capped >= v_state - slack : v_capped <= v_state + slack;
-    result_.non_associative_gap = (f_.settlement ? v_state - v_capped : v_capped - v_state) / scale(v_state);
+    gap = (f_.settlement ? v_state - v_capped : v_capped - v_state) / scale(v_state);
     Eigen::VectorXd capped_y = capped.y;
     capped_arbitrary_blocks_ = settle_unloaded_blocks(m_, cylinder_, cylinder_.problem.c, capped_y).unsettled;
     // The block rows come first in both formulations (radius rows follow them in the capped one).
@@ -413,6 +531,7 @@ class ShiftScheme {
   }
 
   void report(double& value) {
+    result_.non_associative_gap = candidate_.gap;
     if (result_.verdict == Verdict::TimeLimit || result_.verdict == Verdict::Cancelled) {
       // Nothing is reported; the run's record keeps the last completed step's value.
       if (last_step_.x.size() > 0) value = multiplier_value(f_, last_step_.x);
@@ -420,8 +539,11 @@ class ShiftScheme {
     }
     const Candidate& c = candidate_;
     value = multiplier_value(f_, c.state.x);
+    if (result_.non_associative_converged) record_pointwise();
     conic::Solution other;
-    if (result_.non_associative_converged && c.selected && select(c.shift, c.face_optimum, -1.0, other)) {
+    if (result_.non_associative_converged && c.other_end) {
+      result_.non_associative_range = std::make_pair(std::min(value, *c.other_end), std::max(value, *c.other_end));
+    } else if (result_.non_associative_converged && c.selected && select(c.shift, c.face_optimum, -1.0, other)) {
       const double v_other = multiplier_value(f_, other.x);
       result_.non_associative_range = std::make_pair(std::min(value, v_other), std::max(value, v_other));
     } else if (result_.non_associative_converged) {
@@ -444,7 +566,7 @@ class ShiftScheme {
     conic::Solution state = c.state;
     state.y = c.mechanism_y;
     const std::vector<int> arbitrary =
-        c.confirmed ? capped_arbitrary_blocks_
+        c.confirmed ? c.arbitrary_blocks
                     : settle_unloaded_blocks(m_, f_, shifted_cost(m_, f_, cost_, c.shift, 1.0), state.y).unsettled;
     result_.solver_info = c.state.info;
     result_.interior_point_history = c.state.info.history;
@@ -463,6 +585,11 @@ class ShiftScheme {
     Eigen::VectorXd shift, mechanism_y;
     double face_optimum = 0.0;
     double dilatancy = 0.0;
+    std::optional<double> other_end;  ///< the other end of the pointwise compatible states, when found
+    std::optional<bool> pointwise;    ///< the pointwise check, when it ran and finished
+    PatternViolation violation;       ///< when pointwise is false
+    double gap = 0.0;                 ///< of its test (AnalysisResult::non_associative_gap)
+    std::vector<int> arbitrary_blocks;  ///< of its test's mechanism, when confirmed
     bool selected = false;
     bool confirmed = false;
   };
@@ -481,6 +608,8 @@ class ShiftScheme {
   conic::Solution last_step_;
   Eigen::VectorXd last_shift_;
   Candidate candidate_;
+  std::optional<Candidate> work_only_;  ///< a certified candidate that matched only in work (accept)
+  int retry_until_ = 0;
   Formulation cylinder_;
   std::unique_ptr<conic::ConicSolver> cylinder_solver_;
   Eigen::VectorXd capped_mechanism_;  ///< of the last test, in the associative formulation's rows
@@ -492,11 +621,15 @@ class ShiftScheme {
 
 namespace {
 
-/// Whether run a's state is to be reported rather than run b's: certified beats uncertified, then
-/// the conservative value (the lower alpha, the higher R).
+/// Whether run a's state is to be reported rather than run b's: certified beats uncertified, a
+/// state that matches its mechanism point by point beats one that matches it in work only (the
+/// latter's nearby states are not bounded by the tolerance: docs/method.md), then the
+/// conservative value (the lower alpha, the higher R).
 bool preferred(bool settlement, const NonAssociativeTrajectory& a, const NonAssociativeTrajectory& b) {
   if (a.converged != b.converged) return a.converged;
   if (!a.converged) return false;  // neither is a collapse state: keep the earlier run's
+  const bool a_matches = a.pointwise != false, b_matches = b.pointwise != false;
+  if (a_matches != b_matches) return a_matches;
   return settlement ? a.value > b.value : a.value < b.value;
 }
 
@@ -515,12 +648,17 @@ void warn_about_spread(const model::Model& m, const Formulation& f, AnalysisResu
   const double reported = result.non_associative_trajectories[result.non_associative_reported].value;
   if (certified < 2 || high - low <= m.analysis.non_associative_tolerance * std::abs(reported)) return;
   const double unit = f.settlement ? m.units.force_to_kN : 1.0;
+  const bool conservative = reported == (f.settlement ? high : low);
+  const std::string which = conservative ? "the conservative one, " + format(reported / unit, 6) + ", is reported"
+                                         : format(reported / unit, 6) +
+                                               " is reported: it matches its mechanism point by point, the more "
+                                               "conservative ones match theirs in work only";
   result.warnings.push_back(
       {"non_associative_states_differ",
        std::to_string(certified) + " runs of the non-associative scheme certified collapse states from " +
            format(low / unit, 6) + " to " + format(high / unit, 6) + " (" + format(100.0 * (high - low) / std::abs(reported), 3) +
-           " % of the value apart); the conservative one, " + format(reported / unit, 6) +
-           ", is reported. Non-associative collapse is not unique: a state outside this range may exist",
+           " % of the value apart); " + which +
+           ". Non-associative collapse is not unique: a state outside this range may exist",
        "/analysis/non_associative/trajectories"});
 }
 
@@ -564,6 +702,7 @@ void run_non_associative(const model::Model& m, const Formulation& formulation, 
     t.schedule = kSchedules[k];
     t.value = run_value;
     t.converged = run.non_associative_converged;
+    t.pointwise = run.non_associative_pointwise;
     t.steps = static_cast<int>(run.non_associative.size()) - 1;
     t.checks = run.non_associative_checks;
     t.seconds = run.solve_seconds - before.solve_seconds;

@@ -189,6 +189,7 @@ void read_analysis(const json& doc, model::Model& m, IssueList& issues) {
     a.non_associative_tolerance = na.value("tolerance", a.non_associative_tolerance);
     a.non_associative_damping = na.value("damping", a.non_associative_damping);
     a.non_associative_warm_start = na.value("warm_start", a.non_associative_warm_start);
+    a.non_associative_pointwise_retry = na.value("pointwise_retry", a.non_associative_pointwise_retry);
     a.non_associative_trajectories = na.value("trajectories", a.non_associative_trajectories);
   }
   a.time_limit_seconds = s.value("time_limit", a.time_limit_seconds);

@@ -86,7 +86,7 @@ json warning_summary_json(const std::vector<model::Warning>& warnings) {
 }
 
 json model_only_result(const model::Model& model, const model::StageTimings& timings, const std::string& source) {
-  json result{{"schema_version", "1.10.0"},
+  json result{{"schema_version", "1.11.0"},
               {"rbla_version", RBLA_VERSION},
               {"status", "model_only"},
               {"verdict", "Model read and checked; no analysis was run."},
@@ -225,13 +225,20 @@ void add_non_associative_convergence(const model::Model& model, const analysis::
     convergence["non_associative_range"] = {{"low", non_negative(result.non_associative_range->first / value_unit)},
                                             {"high", non_negative(result.non_associative_range->second / value_unit)}};
   }
+  if (result.non_associative_pointwise) {
+    convergence["non_associative_pointwise"] = *result.non_associative_pointwise;
+    if (!*result.non_associative_pointwise) {
+      convergence["non_associative_open_force"] = result.non_associative_open_force;
+      convergence["non_associative_friction_shortfall"] = result.non_associative_friction_shortfall;
+    }
+  }
   if (result.non_associative_bound) {
     convergence["non_associative_bound"] = non_negative(*result.non_associative_bound / value_unit);
   }
   json runs = json::array();
   for (std::size_t k = 0; k < result.non_associative_trajectories.size(); ++k) {
     const analysis::NonAssociativeTrajectory& t = result.non_associative_trajectories[k];
-    runs.push_back({{"run", k + 1},
+    json run{{"run", k + 1},
                     {"test_schedule", {{"when_close", t.schedule.when_close}, {"at_most", t.schedule.at_most}}},
                     {"value", non_negative(t.value / value_unit)},
                     {"certified", t.converged},
@@ -240,7 +247,9 @@ void add_non_associative_convergence(const model::Model& model, const analysis::
                     {"checks", t.checks},
                     {"seconds", t.seconds},
                     {"step_iterations", t.step_iterations},
-                    {"test_iterations", t.test_iterations}});
+                    {"test_iterations", t.test_iterations}};
+    if (t.pointwise) run["pointwise"] = *t.pointwise;
+    runs.push_back(run);
   }
   if (!runs.empty()) convergence["non_associative_trajectories"] = runs;
 }

@@ -106,6 +106,9 @@ struct AnalysisRequest {
   double non_associative_tolerance = 1e-3;
   double non_associative_damping = 0.5;
   bool non_associative_warm_start = true;
+  // Go on after a certified state that matches its mechanism in work only, for one that matches
+  // point by point (analysis/compatible_states.hpp).
+  bool non_associative_pointwise_retry = true;
   // Runs of the scheme with different test schedules (analysis/non_associative.hpp): the
   // conservative certified state is reported, and all the states found.
   int non_associative_trajectories = 1;
