@@ -60,6 +60,14 @@ def summarise(scene, load, formulation, result):
             "best": best, "first_k_shortfall": first_k}
 
 
+def cell(run):
+    """A run's value: * certified, † certified in work only (no state matches its mechanism point by
+    point), bold the run reported."""
+    mark = ("*" + ("†" if run.get("pointwise") is False else "")) if run["certified"] else ""
+    text = "%.6g%s" % (run["value"], mark)
+    return "**%s**" % text if run.get("reported") else text
+
+
 def pct(x):
     return "–" if x is None else "%.2f %%" % (100.0 * x)
 
@@ -71,15 +79,17 @@ def markdown(cases, meta):
              "the scheme runs once per test schedule (when_close/at_most: test every when_close steps once "
              "a step's state dilates by less than 1 %% of its value, and at least every at_most steps). "
              "Values: α (seismic) or R in kN (settlement); * marks a certified state (fixed-point test passed "
-             "at the default tolerance 10⁻³); the most conservative certified state is the lowest α or the "
-             "highest R." % (meta["date"], meta["rbla"], meta["load_start"], meta["load_end"], RUNS), ""]
+             "at the default tolerance 10⁻³), † a certified state whose mechanism no state matches point by "
+             "point (it matches in work only), bold the run reported (a pointwise certified state before a "
+             "work-only one, then the most conservative); the most conservative certified state is the lowest "
+             "α or the highest R." % (meta["date"], meta["rbla"], meta["load_start"], meta["load_end"], RUNS), ""]
     schedules = [r["test_schedule"] for r in cases[0]["runs"]]
     head = "| scene | load | formulation | " + " | ".join(
         "run %d (%d/%d)" % (k + 1, s["when_close"], s["at_most"]) for k, s in enumerate(schedules)) + \
         " | spread of certified | default short of best | best of runs 1–2 | best of runs 1–3 |"
     lines += [head, "|" + "---|" * (len(schedules) + 7)]
     for c in cases:
-        cells = ["%.6g%s" % (r["value"], "*" if r["certified"] else "") for r in c["runs"]]
+        cells = [cell(r) for r in c["runs"]]
         f = c["first_k_shortfall"]
         lines.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
             c["scene"], c["load"], c["formulation"], " | ".join(cells), pct(c["spread"]), pct(f[0]), pct(f[1]),
@@ -97,7 +107,14 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--rbla", required=True)
     parser.add_argument("--out", required=True)
+    parser.add_argument("--render", help="only rewrite the markdown from this run's JSON")
     args = parser.parse_args(argv)
+    if args.render:
+        with open(args.render) as f:
+            data = json.load(f)
+        with open(os.path.join(args.out, "non_associative_states.md"), "w") as f:
+            f.write(markdown(data["cases"], data["meta"]))
+        return
     rbla = os.path.abspath(args.rbla)
     meta = {"date": datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC"), "load_start": float(load_average()),
             "rbla": subprocess.run([rbla, "--version"], capture_output=True, text=True).stdout.strip()}
