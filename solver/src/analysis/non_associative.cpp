@@ -256,12 +256,25 @@ class ShiftScheme {
   /// to 50 steps found one more (docs/method.md, "How compatible a certified state is").
   bool accept(int step) {
     const std::string passed = "the state passed the fixed-point test (shear capped at mu N)";
-    if (candidate_.pointwise != false) {
+    if (candidate_.pointwise == true) {
       result_.non_associative_converged = true;
       result_.non_associative_stop =
-          work_only_ ? passed + " and matches its mechanism point by point (an earlier one matched it in work only)"
+          work_only_ ? passed + " and matches its mechanism point by point (an earlier one, " +
+                           format(multiplier_value(f_, work_only_->state.x) / value_unit(), 6) +
+                           ", matched its own in work only)"
                      : passed;
       work_only_.reset();
+      return true;
+    }
+    if (!candidate_.pointwise) {
+      // The check did not finish (the clock, or a solve that failed): the state is certified in
+      // work, as far as anyone knows.
+      if (work_only_) {
+        keep_work_only("the check of the next state that passed did not finish");
+        return true;
+      }
+      result_.non_associative_converged = true;
+      result_.non_associative_stop = passed + "; its check point by point did not finish";
       return true;
     }
     if (!work_only_ && request_.non_associative_pointwise_retry) {
@@ -278,16 +291,20 @@ class ShiftScheme {
     return true;
   }
 
-  /// Ends the run with the more conservative of the states certified in work only.
+  /// Ends the run with the more conservative of the states certified in work only (the later one
+  /// may also be one whose check did not finish).
   void keep_work_only(const std::string& why) {
     const double kept = multiplier_value(f_, work_only_->state.x), later = multiplier_value(f_, candidate_.state.x);
-    const bool later_is_certified = candidate_.confirmed && candidate_.pointwise == false;
+    const bool later_is_certified = candidate_.confirmed && candidate_.pointwise != true;
     if (!later_is_certified || (f_.settlement ? kept >= later : kept <= later)) candidate_ = *work_only_;
     work_only_.reset();
     result_.non_associative_converged = true;
     result_.non_associative_stop = "the state passed the fixed-point test (shear capped at mu N) and matches its "
                                    "mechanism in work only; " + why;
   }
+
+  /// kN per unit of the value in messages: the model's force unit under settlement, 1 for alpha.
+  double value_unit() const { return f_.settlement ? m_.units.force_to_kN : 1.0; }
 
   /// Scale of the value for relative measures: |alpha| (at least 1e-6: a live load a millionth of
   /// its own size), or |R| (at least a millionth of the mean block weight). A floor far below that
@@ -308,9 +325,10 @@ class ShiftScheme {
 
   /// Solves with the given cost; false (after a warning) when no solution came back. When the
   /// clock stops a run that holds a certified state (one certified in work only, kept by accept,
-  /// or the one whose range is being selected), that state is reported: the verdict stays.
+  /// one that has just passed the test, or the one whose range is being selected), that state is
+  /// reported: the verdict stays.
   bool solve(const Eigen::VectorXd& cost, double gap, conic::Solution& out, int step) {
-    const bool holds_certified = work_only_ || result_.non_associative_converged;
+    const bool holds_certified = work_only_ || result_.non_associative_converged || candidate_.confirmed;
     if (deadline_.left() <= 0.0) {
       if (!holds_certified) result_.verdict = Verdict::TimeLimit;
       if (!result_.non_associative_converged) result_.non_associative_stop = "the time limit ran out";
@@ -429,7 +447,16 @@ class ShiftScheme {
   /// mechanism point by point.
   void record_pointwise() {
     result_.non_associative_pointwise = candidate_.pointwise;
-    if (candidate_.pointwise != false) return;
+    if (!candidate_.pointwise) {
+      result_.warnings.push_back(
+          {"non_associative_pointwise_unchecked",
+           "the check of the certified mechanism point by point did not finish (the time limit, or a solve that "
+           "failed): the state matches its mechanism in work (to analysis.non_associative.tolerance), and whether "
+           "any state matches it point by point is not known",
+           "/analysis/non_associative"});
+      return;
+    }
+    if (*candidate_.pointwise) return;
     result_.non_associative_open_force = candidate_.violation.open_force;
     result_.non_associative_friction_shortfall = candidate_.violation.friction_shortfall;
     result_.warnings.push_back(
@@ -439,7 +466,8 @@ class ShiftScheme {
          "to " + format(100.0 * candidate_.violation.open_force, 3) + " % of the largest normal force and points "
          "that slide fall short of full friction by up to " +
          format(100.0 * candidate_.violation.friction_shortfall, 3) +
-         " % of it. States that nearly match may lie further from the value than the tolerance; a smaller "
+         " % of it (other states may come closer; none matches exactly). States that nearly match may lie "
+         "further from the value than the tolerance; a smaller "
          "tolerance or more runs (analysis.non_associative.trajectories) may find one that matches",
          "/analysis/non_associative/tolerance"});
   }
@@ -461,6 +489,7 @@ class ShiftScheme {
   /// then the candidate's.
   bool certify(const conic::Solution& step, const Eigen::VectorXd& shift) {
     candidate_.shift = shift;
+    candidate_.confirmed = false;
     candidate_.other_end.reset();
     candidate_.pointwise.reset();
     candidate_.face_optimum = step.info.primal_objective;
@@ -628,7 +657,7 @@ namespace {
 bool preferred(bool settlement, const NonAssociativeTrajectory& a, const NonAssociativeTrajectory& b) {
   if (a.converged != b.converged) return a.converged;
   if (!a.converged) return false;  // neither is a collapse state: keep the earlier run's
-  const bool a_matches = a.pointwise != false, b_matches = b.pointwise != false;
+  const bool a_matches = a.pointwise == true, b_matches = b.pointwise == true;
   if (a_matches != b_matches) return a_matches;
   return settlement ? a.value > b.value : a.value < b.value;
 }
