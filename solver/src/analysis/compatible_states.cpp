@@ -16,18 +16,6 @@ namespace {
 /// mechanisms where none matches.
 constexpr double kFoundTolerance = 1e-6;
 
-/// Relative velocity (block_b minus block_a) at every formulation point.
-std::vector<Vec3> relative_velocities(const model::Model& m, const Formulation& f, const Eigen::VectorXd& y) {
-  const std::vector<BlockMotion> motions = block_velocities(m, f, y);
-  std::vector<Vec3> d(f.points.size());
-  for (std::size_t p = 0; p < f.points.size(); ++p) {
-    const FormulationPoint& point = f.points[p];
-    const model::ContactInterface& c = m.interfaces[point.interface_index];
-    d[p] = point_velocity(m, motions, c.block_b, point.position) - point_velocity(m, motions, c.block_a, point.position);
-  }
-  return d;
-}
-
 /// The friction a point can carry against a slip along the unit tangent t, per unit normal
 /// force: mu for the exact cone, the reach of the pyramid (or of the planar cone's edges) in
 /// that direction, max_j (-g_j . t) / (g_j . n) over its edge generators.
@@ -91,7 +79,7 @@ conic::Solution in_formulation_rows(conic::Solution s, Eigen::Index rows) {
 }  // namespace
 
 PointPattern point_pattern(const model::Model& m, const Formulation& f, const Eigen::VectorXd& y) {
-  const std::vector<Vec3> d = relative_velocities(m, f, y);
+  const std::vector<Vec3> d = formulation_point_velocities(m, f, y);
   double largest = 0.0;
   for (const Vec3& v : d) largest = std::max(largest, v.norm());
   PointPattern pattern;

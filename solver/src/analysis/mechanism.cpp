@@ -44,6 +44,17 @@ Vec3 point_velocity(const model::Model& m, const std::vector<BlockMotion>& motio
   return motion.translation + motion.rotation.cross(p - m.blocks[block].centroid);
 }
 
+std::vector<Vec3> formulation_point_velocities(const model::Model& m, const Formulation& f, const Eigen::VectorXd& y) {
+  const std::vector<BlockMotion> motions = block_velocities(m, f, y);
+  std::vector<Vec3> d(f.points.size());
+  for (std::size_t p = 0; p < f.points.size(); ++p) {
+    const FormulationPoint& point = f.points[p];
+    const model::ContactInterface& c = m.interfaces[point.interface_index];
+    d[p] = point_velocity(m, motions, c.block_b, point.position) - point_velocity(m, motions, c.block_a, point.position);
+  }
+  return d;
+}
+
 double block_speed(const model::Block& block, const BlockMotion& motion) {
   double largest = 0.0;
   for (const Vec3& v : block.vertices) {

@@ -46,6 +46,11 @@ void set_block_multipliers(const Formulation& formulation, int block, const Bloc
 /// Velocity of a point p of block i: u_i + theta_i x (p - g_i).
 Vec3 point_velocity(const model::Model& model, const std::vector<BlockMotion>& motions, int block, const Vec3& p);
 
+/// Relative velocity (block_b minus block_a) at every point of the formulation, for the mechanism
+/// whose equality multipliers are y (block_velocities).
+std::vector<Vec3> formulation_point_velocities(const model::Model& model, const Formulation& formulation,
+                                               const Eigen::VectorXd& y);
+
 /// Largest vertex speed of one block under `motion` (m per unit of the motion).
 double block_speed(const model::Block& block, const BlockMotion& motion);
 

@@ -52,14 +52,11 @@ constexpr int kNumSchedules = static_cast<int>(sizeof(kSchedules) / sizeof(kSche
 /// s_k = mu_k |d_t,k|: the friction work rate a sliding point would need to dissipate without
 /// dilatancy, in the dual's own velocity units (formulation units, unnormalised).
 std::vector<double> slip_shift(const model::Model& m, const Formulation& f, const Eigen::VectorXd& y) {
-  const std::vector<BlockMotion> motions = block_velocities(m, f, y);
+  const std::vector<Vec3> d = formulation_point_velocities(m, f, y);
   std::vector<double> shift(f.points.size(), 0.0);
   for (std::size_t p = 0; p < f.points.size(); ++p) {
-    const FormulationPoint& point = f.points[p];
-    const model::ContactInterface& c = m.interfaces[point.interface_index];
-    const Vec3 d = point_velocity(m, motions, c.block_b, point.position) -
-                   point_velocity(m, motions, c.block_a, point.position);
-    shift[p] = point.friction * (d - d.dot(c.normal) * c.normal).norm();
+    const Vec3& n = m.interfaces[f.points[p].interface_index].normal;
+    shift[p] = f.points[p].friction * (d[p] - d[p].dot(n) * n).norm();
   }
   return shift;
 }
@@ -83,15 +80,12 @@ Eigen::VectorXd shifted_cost(const model::Model& m, const Formulation& f, const 
 /// contact, opening points carry nothing). In the problem's value units per unit live work.
 double dilatancy_work(const model::Model& m, const Formulation& f, const conic::Solution& forces_from,
                       const Eigen::VectorXd& y) {
-  const std::vector<BlockMotion> motions = block_velocities(m, f, y);
+  const std::vector<Vec3> d = formulation_point_velocities(m, f, y);
   const std::vector<Vec3> forces = f.point_forces(forces_from.x);
   double work = 0.0;
   for (std::size_t p = 0; p < f.points.size(); ++p) {
-    const FormulationPoint& point = f.points[p];
-    const model::ContactInterface& c = m.interfaces[point.interface_index];
-    const Vec3 d = point_velocity(m, motions, c.block_b, point.position) -
-                   point_velocity(m, motions, c.block_a, point.position);
-    work += std::max(0.0, forces[p].dot(c.normal)) / f.force_scale * std::abs(d.dot(c.normal));
+    const Vec3& n = m.interfaces[f.points[p].interface_index].normal;
+    work += std::max(0.0, forces[p].dot(n)) / f.force_scale * std::abs(d[p].dot(n));
   }
   return f.settlement ? work * f.force_scale : work;
 }
